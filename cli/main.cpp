@@ -1,0 +1,142 @@
+// sweepvol: the command line of SPEC.md. Thin: parse, call, report.
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "joints_cmd.hpp"
+#include "occt_bridge/sweeper.hpp"
+#include "sweep/error.hpp"
+#include "sweep/spec.hpp"
+
+namespace {
+
+const char* kUsage =
+    "usage: sweepvol COMMAND [ARGS]\n"
+    "\n"
+    "commands:\n"
+    "  run SPEC [-o OUT] [--report R.json] [--set PATH=VALUE]... [--verify]\n"
+    "      compute the swept solid; OUT by extension: .step/.stp, .brep, .stl (binary), .off\n"
+    "  check SPEC [--set PATH=VALUE]...\n"
+    "      validate the spec only\n"
+    "  joints ASSEMBLY.json [--json] [--dot G.dot] [--motion-for PART [--range NAME=lo,hi]...]\n"
+    "      kinematic joint recognition\n"
+    "  --help, --version\n"
+    "\n"
+    "exit codes: 0 success, 2 invalid input, 3 computation failed or result not valid, 1 internal error\n";
+
+struct Args {
+  std::string spec, out, report;
+  std::vector<std::string> sets;
+  bool verify = false;
+};
+
+Args parse_args(int argc, char** argv, bool allow_output) {
+  Args a;
+  for (int i = 2; i < argc; ++i) {
+    std::string s = argv[i];
+    auto value = [&](const char* name) -> std::string {
+      if (i + 1 >= argc) throw sweep::InputError(name, std::string("option ") + name + " needs a value");
+      return argv[++i];
+    };
+    if (s == "--set") a.sets.push_back(value("--set"));
+    else if (s.rfind("--set=", 0) == 0) a.sets.push_back(s.substr(6));
+    else if (allow_output && s == "-o") a.out = value("-o");
+    else if (allow_output && s == "--report") a.report = value("--report");
+    else if (allow_output && s == "--verify") a.verify = true;
+    else if (!s.empty() && s[0] == '-') throw sweep::InputError(s, "unknown option '" + s + "'");
+    else if (a.spec.empty()) a.spec = s;
+    else throw sweep::InputError(s, "unexpected argument '" + s + "'");
+  }
+  if (a.spec.empty()) throw sweep::InputError("SPEC", "missing spec file argument");
+  return a;
+}
+
+bool write_text_atomic(const std::string& path, const std::string& text) {
+  const std::string tmp = path + ".partial";
+  {
+    std::ofstream o(tmp);
+    o << text;
+    if (!o) {
+      std::remove(tmp.c_str());
+      return false;
+    }
+  }
+  return std::rename(tmp.c_str(), path.c_str()) == 0;
+}
+
+int cmd_check(int argc, char** argv) {
+  Args a = parse_args(argc, argv, false);
+  sweep::Spec s = sweep::load_spec(a.spec, a.sets);
+  std::cout << "ok: " << a.spec << " (" << sweep::to_string(s.entity.kind) << ", "
+            << sweep::to_string(s.motion.kind) << ", " << s.motion.motion.dof() << " joint"
+            << (s.motion.motion.dof() == 1 ? "" : "s") << ")\n";
+  return 0;
+}
+
+int cmd_run(int argc, char** argv) {
+  Args a = parse_args(argc, argv, true);
+  if (!a.out.empty() && !sweep::occt::supported_output(a.out))
+    throw sweep::InputError("-o", "unsupported output extension in '" + a.out +
+                                      "' (expected .step, .stp, .brep, .stl or .off)");
+  sweep::Spec s = sweep::load_spec(a.spec, a.sets);
+  sweep::occt::RunOptions opt;
+  opt.verify = a.verify;
+  sweep::occt::RunResult r = sweep::occt::run_sweep(s, opt);
+  if (r.report.ok() && !a.out.empty()) {
+    try {
+      double size = 0;
+      for (int k = 0; k < 3; ++k) size = std::max(size, r.report.bbox_max[k] - r.report.bbox_min[k]);
+      sweep::occt::write_shape(*r.shape, a.out, std::max(1e-4 * size, r.report.tol_requested));
+    } catch (const sweep::ComputeError& e) {
+      r.report.status = "failed";
+      r.report.message = e.what();
+    }
+  }
+  const std::string text = r.report.to_json().dump(2) + "\n";
+  std::cout << text;
+  if (!a.report.empty() && !write_text_atomic(a.report, text))
+    throw sweep::ComputeError("cannot write report '" + a.report + "'");
+  if (!r.report.ok()) {
+    std::cerr << "sweepvol: failed: " << r.report.message << "\n";
+    return 3;
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    std::cerr << kUsage;
+    return 2;
+  }
+  const std::string cmd = argv[1];
+  try {
+    if (cmd == "--help" || cmd == "-h" || cmd == "help") {
+      std::cout << kUsage;
+      return 0;
+    }
+    if (cmd == "--version") {
+      std::cout << "sweepvol " << SWEEP_VERSION << "\n";
+      return 0;
+    }
+    if (cmd == "run") return cmd_run(argc, argv);
+    if (cmd == "check") return cmd_check(argc, argv);
+    if (cmd == "joints") return sweep_joints_main(argc - 1, argv + 1);
+    std::cerr << "sweepvol: unknown command '" << cmd << "'\n" << kUsage;
+    return 2;
+  } catch (const sweep::InputError& e) {
+    std::string src = argc > 2 && argv[2][0] != '-' ? argv[2] : "";
+    std::cerr << "sweepvol: error: " << e.describe(e.line() > 0 ? src : "") << "\n";
+    return 2;
+  } catch (const sweep::ComputeError& e) {
+    std::cerr << "sweepvol: failed: " << e.what() << "\n";
+    return 3;
+  } catch (const std::exception& e) {
+    std::cerr << "sweepvol: internal error: " << e.what() << "\n";
+    return 1;
+  }
+}

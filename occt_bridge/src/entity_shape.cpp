@@ -1,0 +1,193 @@
+// Entity -> OCCT shape: exact primitives, fitted parametric curves and surfaces, files.
+#include <BRepBuilderAPI_MakeEdge.hxx>
+#include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepBuilderAPI_MakeVertex.hxx>
+#include <BRepBuilderAPI_Transform.hxx>
+#include <BRepPrimAPI_MakeBox.hxx>
+#include <BRepPrimAPI_MakeCone.hxx>
+#include <BRepPrimAPI_MakeCylinder.hxx>
+#include <BRepPrimAPI_MakeSphere.hxx>
+#include <BRepPrimAPI_MakeTorus.hxx>
+#include <BRepTools.hxx>
+#include <BRep_Builder.hxx>
+#include <GeomAPI_PointsToBSpline.hxx>
+#include <GeomAPI_PointsToBSplineSurface.hxx>
+#include <Geom_BSplineCurve.hxx>
+#include <Geom_BSplineSurface.hxx>
+#include <IFSelect_ReturnStatus.hxx>
+#include <STEPControl_Reader.hxx>
+#include <ShapeFix_Shape.hxx>
+#include <Standard_Failure.hxx>
+#include <TColgp_Array1OfPnt.hxx>
+#include <TColgp_Array2OfPnt.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Compound.hxx>
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+
+#include "internal.hpp"
+#include "sweep/error.hpp"
+
+namespace sweep::occt {
+
+gp_Trsf to_trsf(const Eigen::Isometry3d& T) {
+  gp_Trsf t;
+  const auto& M = T.matrix();
+  t.SetValues(M(0, 0), M(0, 1), M(0, 2), M(0, 3), M(1, 0), M(1, 1), M(1, 2), M(1, 3), M(2, 0), M(2, 1),
+              M(2, 2), M(2, 3));
+  return t;
+}
+
+namespace {
+
+gp_Ax2 axis_frame(const Eigen::Vector3d& origin, const Eigen::Vector3d& axis) {
+  return gp_Ax2(to_pnt(origin), gp_Dir(axis.x(), axis.y(), axis.z()));
+}
+
+gp_Pnt eval_xyz(const EntitySpec& e, const double* uv) {
+  return gp_Pnt(e.xyz[0].eval(uv), e.xyz[1].eval(uv), e.xyz[2].eval(uv));
+}
+
+/// Fits a B-spline curve to the parametric curve, doubling the samples until the error measured
+/// between samples is below tol.
+Handle(Geom_BSplineCurve) fit_curve(const EntitySpec& e, double tol, double* err) {
+  const double lo = e.params[0].lo, hi = e.params[0].hi;
+  for (int n = 16; n <= 4096; n *= 2) {
+    TColgp_Array1OfPnt pts(1, n + 1);
+    TColStd_Array1OfReal par(1, n + 1);
+    for (int i = 0; i <= n; ++i) {
+      double u = lo + (hi - lo) * i / n;
+      pts.SetValue(i + 1, eval_xyz(e, &u));
+      par.SetValue(i + 1, u);
+    }
+    GeomAPI_PointsToBSpline fit(pts, par, 3, 8, GeomAbs_C2, 0.1 * tol);
+    if (!fit.IsDone()) continue;
+    Handle(Geom_BSplineCurve) c = fit.Curve();
+    double e_max = 0;
+    for (int i = 0; i < 4 * n; ++i) {
+      double u = lo + (hi - lo) * (i + 0.5) / (4 * n);
+      e_max = std::max(e_max, c->Value(u).Distance(eval_xyz(e, &u)));
+    }
+    if (e_max <= tol || n == 4096) {
+      *err = std::max(*err, e_max);
+      return c;
+    }
+  }
+  throw ComputeError("could not fit the curve entity");
+}
+
+Handle(Geom_BSplineSurface) fit_surface(const EntitySpec& e, double tol, double* err) {
+  const double u0 = e.params[0].lo, u1 = e.params[0].hi, v0 = e.params[1].lo, v1 = e.params[1].hi;
+  for (int n = 16; n <= 256; n *= 2) {
+    TColgp_Array2OfPnt pts(1, n + 1, 1, n + 1);
+    for (int i = 0; i <= n; ++i)
+      for (int j = 0; j <= n; ++j) {
+        double uv[2] = {u0 + (u1 - u0) * i / n, v0 + (v1 - v0) * j / n};
+        pts.SetValue(i + 1, j + 1, eval_xyz(e, uv));
+      }
+    GeomAPI_PointsToBSplineSurface fit;
+    fit.Interpolate(pts);
+    if (!fit.IsDone()) continue;
+    Handle(Geom_BSplineSurface) s = fit.Surface();
+    // Interpolation is uniform in the index; map the spec parameters onto the knot range.
+    double a0, a1, b0, b1;
+    s->Bounds(a0, a1, b0, b1);
+    double e_max = 0;
+    for (int i = 0; i < 2 * n; ++i)
+      for (int j = 0; j < 2 * n; ++j) {
+        double fu = (i + 0.5) / (2 * n), fv = (j + 0.5) / (2 * n);
+        double uv[2] = {u0 + (u1 - u0) * fu, v0 + (v1 - v0) * fv};
+        e_max = std::max(e_max, s->Value(a0 + (a1 - a0) * fu, b0 + (b1 - b0) * fv).Distance(eval_xyz(e, uv)));
+      }
+    if (e_max <= tol || n == 256) {
+      *err = std::max(*err, e_max);
+      return s;
+    }
+  }
+  throw ComputeError("could not fit the surface entity");
+}
+
+}  // namespace
+
+TopoDS_Shape read_shape_file(const std::string& path, const std::string& pointer) {
+  std::string ext = path.substr(path.find_last_of('.') + 1);
+  std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
+  TopoDS_Shape s;
+  try {
+    if (ext == "brep") {
+      BRep_Builder b;
+      if (!BRepTools::Read(s, path.c_str(), b)) throw InputError(pointer, "cannot read BREP file '" + path + "'");
+    } else {
+      STEPControl_Reader r;
+      if (r.ReadFile(path.c_str()) != IFSelect_RetDone)
+        throw InputError(pointer, "cannot read STEP file '" + path + "'");
+      if (r.TransferRoots() == 0) throw InputError(pointer, "STEP file '" + path + "' holds no shape");
+      s = r.OneShape();
+    }
+  } catch (const Standard_Failure& f) {
+    throw InputError(pointer, "cannot read '" + path + "': " + (f.GetMessageString() ? f.GetMessageString() : "OCCT error"));
+  }
+  if (s.IsNull()) throw InputError(pointer, "file '" + path + "' holds no shape");
+  return s;
+}
+
+TopoDS_Shape entity_shape(const EntitySpec& e, double tol, double* fit_error) {
+  TopoDS_Shape s;
+  switch (e.kind) {
+    case EntityKind::Point:
+      s = BRepBuilderAPI_MakeVertex(to_pnt(e.at)).Vertex();
+      break;
+    case EntityKind::Sphere:
+      s = BRepPrimAPI_MakeSphere(to_pnt(e.center), e.radius).Shape();
+      break;
+    case EntityKind::Box:
+      s = BRepPrimAPI_MakeBox(to_pnt(e.min), to_pnt(e.max)).Shape();
+      break;
+    case EntityKind::Cylinder:
+      s = BRepPrimAPI_MakeCylinder(axis_frame(e.base, e.axis), e.radius, e.height).Shape();
+      break;
+    case EntityKind::Cone:
+      if (std::abs(e.radius1 - e.radius2) < 1e-12 * std::max(e.radius1, e.radius2))
+        s = BRepPrimAPI_MakeCylinder(axis_frame(e.base, e.axis), e.radius1, e.height).Shape();
+      else
+        s = BRepPrimAPI_MakeCone(axis_frame(e.base, e.axis), e.radius1, e.radius2, e.height).Shape();
+      break;
+    case EntityKind::Torus:
+      s = BRepPrimAPI_MakeTorus(axis_frame(e.center, e.axis), e.major, e.minor).Shape();
+      break;
+    case EntityKind::Curve: {
+      auto c = fit_curve(e, tol, fit_error);
+      s = BRepBuilderAPI_MakeEdge(c).Edge();
+      break;
+    }
+    case EntityKind::Surface: {
+      auto f = fit_surface(e, tol, fit_error);
+      BRepBuilderAPI_MakeFace mf(f, tol);
+      if (!mf.IsDone()) throw ComputeError("could not build a face from the surface entity");
+      s = mf.Face();
+      break;
+    }
+    case EntityKind::Brep: {
+      s = read_shape_file(e.file, "/entity/file");
+      ShapeFix_Shape fix(s);
+      fix.Perform();
+      s = fix.Shape();
+      TopExp_Explorer ex(s, TopAbs_SOLID);
+      if (!ex.More()) {
+        TopExp_Explorer fx(s, TopAbs_FACE);
+        if (!fx.More()) throw InputError("/entity/file", "file '" + e.file + "' holds no solid and no face");
+      }
+      break;
+    }
+    default:
+      throw InputError("/entity/kind", std::string("entity kind '") + to_string(e.kind) +
+                                           "' is not supported by the sweep yet");
+  }
+  if (!e.placement.matrix().isIdentity(0.0))
+    s = BRepBuilderAPI_Transform(s, to_trsf(e.placement), true).Shape();
+  return s;
+}
+
+}  // namespace sweep::occt

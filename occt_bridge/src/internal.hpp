@@ -1,0 +1,66 @@
+#pragma once
+// OCCT-side helpers shared by the bridge's translation units.
+#include <Geom_Curve.hxx>
+#include <TopoDS_Edge.hxx>
+#include <TopoDS_Face.hxx>
+#include <TopoDS_Shape.hxx>
+#include <gp_Pnt.hxx>
+#include <gp_Trsf.hxx>
+#include <gp_Vec.hxx>
+#include <vector>
+
+#include "occt_bridge/sweeper.hpp"
+#include "sweep/motion.hpp"
+#include "sweep/spec.hpp"
+
+namespace sweep::occt {
+
+class Shape {
+ public:
+  explicit Shape(TopoDS_Shape s) : shape(std::move(s)) {}
+  TopoDS_Shape shape;
+};
+
+inline gp_Pnt to_pnt(const Eigen::Vector3d& v) { return gp_Pnt(v.x(), v.y(), v.z()); }
+inline gp_Vec to_vec(const Eigen::Vector3d& v) { return gp_Vec(v.x(), v.y(), v.z()); }
+inline Eigen::Vector3d to_eigen(const gp_XYZ& p) { return {p.X(), p.Y(), p.Z()}; }
+inline Eigen::Vector3d to_eigen(const gp_Pnt& p) { return {p.X(), p.Y(), p.Z()}; }
+inline Eigen::Vector3d to_eigen(const gp_Vec& p) { return {p.X(), p.Y(), p.Z()}; }
+gp_Trsf to_trsf(const Eigen::Isometry3d& T);
+
+/// The entity as an OCCT shape in its own frame with its placement applied.
+/// Solids for solid kinds, a face for `surface`, an edge for `curve`, a vertex for `point`.
+/// `tol` is the fitting tolerance for parametric kinds; `fit_error` receives the measured error.
+TopoDS_Shape entity_shape(const EntitySpec& e, double tol, double* fit_error);
+
+/// A curve on a face where the motion's velocity is tangent to the face (n . v = 0), fitted to
+/// tolerance, with the number of fitted points.
+struct GrazingCurve {
+  Handle(Geom_Curve) curve;
+  double first = 0, last = 0;
+};
+/// Grazing curves of a face under one screw joint (in the face's current position). Faces whose
+/// whole surface is grazing (they slide within themselves) give none.
+std::vector<GrazingCurve> grazing_curves(const TopoDS_Face& face, const ScrewJoint& joint, double tol,
+                                         double size);
+
+/// Faces swept by curve `c` (on [first,last]) under `joint` for q in [0, T]: exact surfaces of
+/// revolution / extrusion, fitted B-spline surfaces for helical motions; split into pieces that do
+/// not overlap themselves. `fit_error` is raised to the largest measured fitting error.
+std::vector<TopoDS_Face> sweep_curve(const Handle(Geom_Curve)& c, double first, double last,
+                                     const ScrewJoint& joint, double T, double tol, double* fit_error);
+
+/// Divergence-theorem volume (1/3) sum over faces of the integral of x . n, computed by Green's
+/// theorem in each face's parameter domain along its pcurves.
+double divergence_volume(const TopoDS_Shape& solid);
+
+/// Reads a STEP or BREP file into a shape. @throws InputError at `pointer` when unreadable.
+TopoDS_Shape read_shape_file(const std::string& path, const std::string& pointer);
+
+}  // namespace sweep::occt
+
+namespace sweep::occt {
+/// The curve as an exact line or circle when it is one within `tol` (fitted grazing curves of
+/// planes and spheres are), else itself. first/last are updated to the new parametrization.
+Handle(Geom_Curve) canonical_curve(const Handle(Geom_Curve)& c, double& first, double& last, double tol);
+}  // namespace sweep::occt

@@ -1,0 +1,238 @@
+// Faces swept by a curve under one screw joint.
+#include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepBuilderAPI_Transform.hxx>
+#include <BRepPrimAPI_MakePrism.hxx>
+#include <BRepPrimAPI_MakeRevol.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopoDS.hxx>
+#include <GeomAPI_PointsToBSplineSurface.hxx>
+#include <Geom_BSplineSurface.hxx>
+#include <Geom_SurfaceOfLinearExtrusion.hxx>
+#include <Geom_SurfaceOfRevolution.hxx>
+#include <Geom_TrimmedCurve.hxx>
+#include <BRepBuilderAPI_MakeEdge.hxx>
+#include <BRepBuilderAPI_MakeWire.hxx>
+#include <ElCLib.hxx>
+#include <GC_MakeArcOfCircle.hxx>
+#include <Geom_Circle.hxx>
+#include <Geom_Line.hxx>
+#include <Geom_Plane.hxx>
+#include <TColgp_Array2OfPnt.hxx>
+#include <gp_Circ.hxx>
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "internal.hpp"
+#include "sweep/error.hpp"
+
+namespace sweep::occt {
+namespace {
+
+TopoDS_Face make_face(const Handle(Geom_Surface)& s, double u0, double u1, double v0, double v1, double tol) {
+  BRepBuilderAPI_MakeFace mf(s, u0, u1, v0, v1, tol);
+  if (!mf.IsDone()) throw ComputeError("could not build a swept face");
+  return mf.Face();
+}
+
+/// True when the motion moves every point of the curve along the curve itself (its sweep is the
+/// curve, with no area).
+bool slides_along(const Handle(Geom_Curve)& c, double f, double l, const ScrewJoint& j) {
+  for (int k = 0; k <= 16; ++k) {
+    gp_Pnt p;
+    gp_Vec d;
+    c->D1(f + (l - f) * k / 16.0, p, d);
+    Eigen::Vector3d v = j.velocity(to_eigen(p)), t = to_eigen(d);
+    if (t.norm() < 1e-300) continue;
+    if (v.cross(t).norm() > 1e-9 * (v.norm() + 1e-300) * t.norm() && v.norm() > 1e-12) return false;
+  }
+  return true;
+}
+
+/// Best-fit check: all samples of c within tol of the candidate.
+bool matches(const Handle(Geom_Curve)& c, double f, double l, const Handle(Geom_Curve)& cand, double tol) {
+  for (int k = 0; k <= 64; ++k) {
+    gp_Pnt p = c->Value(f + (l - f) * k / 64.0);
+    if (cand->IsKind(STANDARD_TYPE(Geom_Line))) {
+      if (Handle(Geom_Line)::DownCast(cand)->Lin().Distance(p) > tol) return false;
+    } else {
+      if (Handle(Geom_Circle)::DownCast(cand)->Circ().Distance(p) > tol) return false;
+    }
+  }
+  return true;
+}
+
+/// The planar region swept by a segment lying in a plane perpendicular to the rotation axis,
+/// as faces bounded by the segment at both ends and the arcs of its end points. The segment is
+/// split at the foot of the axis so each piece sweeps one-to-one.
+std::vector<TopoDS_Face> planar_segment_sweep(const gp_Pnt& a, const gp_Pnt& b, const ScrewJoint& j, double T,
+                                              double tol) {
+  std::vector<TopoDS_Face> out;
+  const gp_Ax1 axis(to_pnt(j.point), gp_Dir(to_vec(j.direction)));
+  const gp_Lin seg(a, gp_Dir(gp_Vec(a, b)));
+  // foot of the axis on the segment's line (closest point in the plane)
+  gp_Pnt c = to_pnt(j.point + j.direction * j.direction.dot(to_eigen(a) - j.point));
+  double s = ElCLib::Parameter(seg, c), len = a.Distance(b);
+  std::vector<std::pair<gp_Pnt, gp_Pnt>> parts;
+  if (s > tol && s < len - tol) {
+    gp_Pnt f = ElCLib::Value(s, seg);
+    parts.push_back({f, a});
+    parts.push_back({f, b});
+  } else {
+    parts.push_back({a, b});
+  }
+  const int pieces = std::max(1, int(std::ceil(T / (M_PI / 2) - 1e-9)));
+  Handle(Geom_Plane) plane = new Geom_Plane(a, axis.Direction());
+  for (auto [p, q] : parts) {
+    for (int k = 0; k < pieces; ++k) {
+      const double t0 = T * k / pieces, t1 = T * (k + 1) / pieces;
+      gp_Trsf r0, r1;
+      r0.SetRotation(axis, t0);
+      r1.SetRotation(axis, t1);
+      gp_Pnt p0 = p.Transformed(r0), q0 = q.Transformed(r0), p1 = p.Transformed(r1), q1 = q.Transformed(r1);
+      BRepBuilderAPI_MakeWire w;
+      w.Add(BRepBuilderAPI_MakeEdge(p0, q0).Edge());
+      auto arc = [&](const gp_Pnt& from, const gp_Pnt& to, double t) {
+        gp_Pnt ctr = to_pnt(j.point + j.direction * j.direction.dot(to_eigen(from) - j.point));
+        double r = ctr.Distance(from);
+        if (r < tol) return false;
+        gp_Ax2 ax(ctr, axis.Direction(), gp_Dir(gp_Vec(ctr, from)));
+        Handle(Geom_Circle) circ = new Geom_Circle(ax, r);
+        w.Add(BRepBuilderAPI_MakeEdge(circ, 0.0, t).Edge());
+        (void)to;
+        return true;
+      };
+      arc(q0, q1, t1 - t0);
+      w.Add(BRepBuilderAPI_MakeEdge(q1, p1).Edge());
+      if (p0.Distance(to_pnt(j.point + j.direction * j.direction.dot(to_eigen(p0) - j.point))) > tol) {
+        gp_Pnt ctr = to_pnt(j.point + j.direction * j.direction.dot(to_eigen(p0) - j.point));
+        gp_Ax2 ax(ctr, axis.Direction(), gp_Dir(gp_Vec(ctr, p0)));
+        Handle(Geom_Circle) circ = new Geom_Circle(ax, ctr.Distance(p0));
+        w.Add(BRepBuilderAPI_MakeEdge(circ, 0.0, t1 - t0).Edge());
+      }
+      if (!w.IsDone()) throw ComputeError("could not build a planar swept face");
+      BRepBuilderAPI_MakeFace mf(plane, w.Wire(), true);
+      if (!mf.IsDone()) throw ComputeError("could not build a planar swept face");
+      out.push_back(mf.Face());
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+Handle(Geom_Curve) canonical_curve(const Handle(Geom_Curve)& c0, double& first, double& last, double tol) {
+  Handle(Geom_Curve) c = c0;
+  while (c->IsKind(STANDARD_TYPE(Geom_TrimmedCurve))) c = Handle(Geom_TrimmedCurve)::DownCast(c)->BasisCurve();
+  if (c->IsKind(STANDARD_TYPE(Geom_Line)) || c->IsKind(STANDARD_TYPE(Geom_Circle))) return c;
+  gp_Pnt a = c->Value(first), m = c->Value(0.5 * (first + last)), b = c->Value(last);
+  gp_Pnt q = c->Value(first + 0.25 * (last - first));
+  if (a.Distance(b) > tol) {
+    Handle(Geom_Line) line = new Geom_Line(a, gp_Dir(gp_Vec(a, b)));
+    if (matches(c, first, last, line, tol)) {
+      double f = ElCLib::Parameter(line->Lin(), a), l = ElCLib::Parameter(line->Lin(), b);
+      first = f;
+      last = l;
+      return line;
+    }
+  }
+  // circle through three points (a, q, m) or (a, m, b)
+  for (auto tri : {std::array<gp_Pnt, 3>{a, q, m}, std::array<gp_Pnt, 3>{a, m, b}}) {
+    GC_MakeArcOfCircle mk(tri[0], tri[1], tri[2]);
+    if (!mk.IsDone()) continue;
+    Handle(Geom_Circle) circ = Handle(Geom_Circle)::DownCast(mk.Value()->BasisCurve());
+    if (circ.IsNull() || !matches(c, first, last, circ, tol)) continue;
+    // parameters: follow the direction of travel of c
+    double f = ElCLib::Parameter(circ->Circ(), a);
+    double mid = ElCLib::Parameter(circ->Circ(), m);
+    double l = ElCLib::Parameter(circ->Circ(), b);
+    if (mid < f) mid += 2 * M_PI;
+    if (l <= f + 1e-12) l += 2 * M_PI;
+    if (mid > l) {  // travel is clockwise: reverse the circle's axis
+      gp_Circ cc = circ->Circ();
+      gp_Ax2 ax = cc.Position();
+      ax.SetDirection(ax.Direction().Reversed());
+      circ = new Geom_Circle(gp_Circ(ax, cc.Radius()));
+      f = ElCLib::Parameter(circ->Circ(), a);
+      l = ElCLib::Parameter(circ->Circ(), b);
+      if (l <= f + 1e-12) l += 2 * M_PI;
+    }
+    if (a.Distance(b) <= tol) l = f + 2 * M_PI;
+    first = f;
+    last = l;
+    return circ;
+  }
+  return c0;
+}
+
+std::vector<TopoDS_Face> sweep_curve(const Handle(Geom_Curve)& c, double first, double last,
+                                     const ScrewJoint& j, double T, double tol, double* fit_error) {
+  std::vector<TopoDS_Face> out;
+  if (slides_along(c, first, last, j)) return out;
+  if (c->IsKind(STANDARD_TYPE(Geom_Line)) && j.type == JointType::Revolute) {
+    gp_Pnt a = c->Value(first), b = c->Value(last);
+    gp_Vec d(a, b);
+    if (std::abs(d.Normalized().Dot(to_vec(j.direction))) < 1e-12) return planar_segment_sweep(a, b, j, T, tol);
+  }
+  auto faces_of = [&](const TopoDS_Shape& sh) {
+    for (TopExp_Explorer ex(sh, TopAbs_FACE); ex.More(); ex.Next()) out.push_back(TopoDS::Face(ex.Current()));
+  };
+  if (j.type == JointType::Prismatic) {
+    // BRepSweep gives exact planes and cylinders where the curve is a line or a circle.
+    TopoDS_Edge e = BRepBuilderAPI_MakeEdge(c, first, last).Edge();
+    faces_of(BRepPrimAPI_MakePrism(e, to_vec(j.direction) * T).Shape());
+    return out;
+  }
+  const bool screw = j.type == JointType::Helical && std::abs(j.pitch) > 0;
+  // Pieces of at most a quarter turn never overlap themselves.
+  const int pieces = std::max(1, int(std::ceil(T / (M_PI / 2) - 1e-9)));
+  if (!screw) {
+    const gp_Ax1 axis(to_pnt(j.point), gp_Dir(to_vec(j.direction)));
+    TopoDS_Edge e = BRepBuilderAPI_MakeEdge(c, first, last).Edge();
+    for (int k = 0; k < pieces; ++k) {
+      gp_Trsf r;
+      r.SetRotation(axis, T * k / pieces);
+      TopoDS_Shape ek = BRepBuilderAPI_Transform(e, r, true).Shape();
+      faces_of(BRepPrimAPI_MakeRevol(ek, axis, T / pieces).Shape());
+    }
+    return out;
+  }
+  // Helical: fit each piece to tolerance on a grid of exact points T(q) c(s).
+  for (int k = 0; k < pieces; ++k) {
+    const double q0 = T * k / pieces, q1 = T * (k + 1) / pieces;
+    auto exact = [&](double fs, double fq) {
+      gp_Pnt p = c->Value(first + (last - first) * fs);
+      Eigen::Vector3d x = j.transform(q0 + (q1 - q0) * fq) * to_eigen(p);
+      return to_pnt(x);
+    };
+    Handle(Geom_BSplineSurface) best;
+    double err = 0;
+    for (int n = 12; n <= 96; n *= 2) {
+      TColgp_Array2OfPnt pts(1, n + 1, 1, n + 1);
+      for (int a = 0; a <= n; ++a)
+        for (int b = 0; b <= n; ++b) pts.SetValue(a + 1, b + 1, exact(double(a) / n, double(b) / n));
+      GeomAPI_PointsToBSplineSurface fit;
+      fit.Init(pts, Approx_IsoParametric, 3, 8, GeomAbs_C2, 0.05 * tol);
+      if (!fit.IsDone()) continue;
+      Handle(Geom_BSplineSurface) s = fit.Surface();
+      double a0, a1, b0, b1;
+      s->Bounds(a0, a1, b0, b1);
+      err = 0;
+      for (int a = 0; a < 2 * n; ++a)
+        for (int b = 0; b < 2 * n; ++b) {
+          double fs = (a + 0.5) / (2 * n), fq = (b + 0.5) / (2 * n);
+          err = std::max(err, s->Value(a0 + (a1 - a0) * fs, b0 + (b1 - b0) * fq).Distance(exact(fs, fq)));
+        }
+      best = s;
+      if (err <= tol) break;
+    }
+    if (best.IsNull()) throw ComputeError("could not fit a helical swept face");
+    *fit_error = std::max(*fit_error, err);
+    double a0, a1, b0, b1;
+    best->Bounds(a0, a1, b0, b1);
+    out.push_back(make_face(best, a0, a1, b0, b1, tol));
+  }
+  return out;
+}
+
+}  // namespace sweep::occt

@@ -1,0 +1,395 @@
+// The single-stage sweep pipeline: candidate varieties -> arrangement -> cell classification ->
+// solid -> validation and report.
+#include <BOPAlgo_MakerVolume.hxx>
+#include <BRepAlgoAPI_Fuse.hxx>
+#include <BRepBndLib.hxx>
+#include <BRepBuilderAPI_MakeEdge.hxx>
+#include <BRepBuilderAPI_Transform.hxx>
+#include <BRepCheck_Analyzer.hxx>
+#include <BRepClass3d_SolidClassifier.hxx>
+#include <BRepGProp.hxx>
+#include <BRepGProp_Face.hxx>
+#include <BRepIntCurveSurface_Inter.hxx>
+#include <BRepLProp_SLProps.hxx>
+#include <BRepTools.hxx>
+#include <BRepTopAdaptor_FClass2d.hxx>
+#include <BRep_Builder.hxx>
+#include <BRep_Tool.hxx>
+#include <Bnd_Box.hxx>
+#include <GProp_GProps.hxx>
+#include <GeomAPI_PointsToBSpline.hxx>
+#include <GeomAdaptor_Curve.hxx>
+#include <Geom_BSplineCurve.hxx>
+#include <Geom_Circle.hxx>
+#include <Geom_Line.hxx>
+#include <Geom_TrimmedCurve.hxx>
+#include <ShapeAnalysis_Shell.hxx>
+#include <ShapeUpgrade_UnifySameDomain.hxx>
+#include <Standard_Failure.hxx>
+#include <TColgp_Array1OfPnt.hxx>
+#include <TopExp.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
+#include <TopTools_ListOfShape.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Compound.hxx>
+#include <chrono>
+#include <cstdlib>
+#include <sstream>
+#include <cmath>
+
+#include "internal.hpp"
+#include "sweep/error.hpp"
+#include "sweep/membership.hpp"
+
+namespace sweep::occt {
+
+nlohmann::json Report::to_json() const {
+  nlohmann::json j;
+  j["sweep_report"] = 1;
+  j["status"] = status;
+  j["message"] = message;
+  j["volume"] = {{"brep", volume_brep}, {"divergence", volume_divergence}};
+  if (has_mc) {
+    j["volume"]["monte_carlo"] = volume_mc;
+    j["volume"]["monte_carlo_stderr"] = volume_mc_stderr;
+  }
+  j["area"] = area;
+  j["centroid"] = {centroid[0], centroid[1], centroid[2]};
+  j["bounding_box"] = {{"min", {bbox_min[0], bbox_min[1], bbox_min[2]}},
+                       {"max", {bbox_max[0], bbox_max[1], bbox_max[2]}}};
+  j["valid"] = valid;
+  j["closed"] = closed;
+  j["faces"] = faces;
+  j["varieties"] = varieties;
+  j["cells"] = cells;
+  j["dimension"] = dimension;
+  j["tolerance"] = {{"requested", tol_requested}, {"achieved", tol_achieved}};
+  nlohmann::json s = seconds;
+  s["total"] = seconds_total;
+  j["seconds"] = s;
+  return j;
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+TopoDS_Shape moved(const TopoDS_Shape& s, const Eigen::Isometry3d& T) {
+  return BRepBuilderAPI_Transform(s, to_trsf(T), true).Shape();
+}
+
+/// The path of the body-frame point y(t) = exp(-xi t) x for t in [0, T] as a curve.
+Handle(Geom_Curve) trajectory(const ScrewJoint& j, const Eigen::Vector3d& x, double T, double tol) {
+  if (j.type == JointType::Prismatic) {
+    Handle(Geom_Line) l = new Geom_Line(to_pnt(x), gp_Dir(to_vec(-j.direction)));
+    return new Geom_TrimmedCurve(l, 0.0, T);
+  }
+  Eigen::Vector3d foot = j.point + j.direction * j.direction.dot(x - j.point);
+  double r = (x - foot).norm();
+  if (std::abs(j.pitch) == 0) {
+    if (r < 1e-12) return nullptr;
+    gp_Ax2 ax(to_pnt(foot), gp_Dir(to_vec(-j.direction)), gp_Dir(to_vec((x - foot) / r)));
+    Handle(Geom_Circle) c = new Geom_Circle(ax, r);
+    return new Geom_TrimmedCurve(c, 0.0, T);
+  }
+  const int n = std::max(16, int(std::ceil(T / (M_PI / 32))));
+  TColgp_Array1OfPnt pts(1, n + 1);
+  for (int k = 0; k <= n; ++k) pts.SetValue(k + 1, to_pnt(j.transform(-T * k / n) * x));
+  GeomAPI_PointsToBSpline fit(pts, 3, 8, GeomAbs_C2, tol);
+  Handle(Geom_Curve) c(fit.Curve().get());
+  return c;
+}
+
+/// Membership by the trajectory: x is swept when y(0) is in the body, or y(t) meets its boundary.
+bool swept_by_trajectory(const TopoDS_Shape& body, bool solid, const ScrewJoint& j, double T,
+                         const Eigen::Vector3d& x, double tol) {
+  if (solid) {
+    BRepClass3d_SolidClassifier cls(body, to_pnt(x), tol);
+    if (cls.State() == TopAbs_IN) return true;
+  }
+  Handle(Geom_Curve) c = trajectory(j, x, T, tol);
+  if (c.IsNull()) return false;
+  BRepIntCurveSurface_Inter inter;
+  inter.Init(body, GeomAdaptor_Curve(c), tol);
+  return inter.More();
+}
+
+/// A point inside the solid cell, a small step inward from one of its faces.
+bool interior_point(const TopoDS_Solid& cell, double size, Eigen::Vector3d* out) {
+  for (double frac : {1e-3, 1e-4, 1e-5}) {
+    for (TopExp_Explorer ex(cell, TopAbs_FACE); ex.More(); ex.Next()) {
+      TopoDS_Face f = TopoDS::Face(ex.Current());
+      double u0, u1, v0, v1;
+      BRepTools::UVBounds(f, u0, u1, v0, v1);
+      BRepTopAdaptor_FClass2d fc(f, 1e-9);
+      for (double a : {0.5, 0.37, 0.63, 0.21, 0.79}) {
+        for (double b : {0.5, 0.41, 0.59, 0.27, 0.73}) {
+          gp_Pnt2d uv(u0 + a * (u1 - u0), v0 + b * (v1 - v0));
+          if (fc.Perform(uv) != TopAbs_IN) continue;
+          BRepAdaptor_Surface S(f);
+          BRepLProp_SLProps props(S, uv.X(), uv.Y(), 1, 1e-9);
+          if (!props.IsNormalDefined()) continue;
+          gp_Dir n = props.Normal();
+          if (f.Orientation() == TopAbs_REVERSED) n.Reverse();
+          gp_Pnt p = props.Value().Translated(gp_Vec(n) * (-frac * size));
+          BRepClass3d_SolidClassifier cls(cell, p, 1e-9 * size);
+          if (cls.State() == TopAbs_IN) {
+            *out = to_eigen(p);
+            return true;
+          }
+        }
+      }
+    }
+  }
+  return false;
+}
+
+double max_tolerance(const TopoDS_Shape& s) {
+  double t = 0;
+  for (TopExp_Explorer ex(s, TopAbs_VERTEX); ex.More(); ex.Next())
+    t = std::max(t, BRep_Tool::Tolerance(TopoDS::Vertex(ex.Current())));
+  for (TopExp_Explorer ex(s, TopAbs_EDGE); ex.More(); ex.Next())
+    t = std::max(t, BRep_Tool::Tolerance(TopoDS::Edge(ex.Current())));
+  return t;
+}
+
+struct Candidates {
+  std::vector<TopoDS_Face> faces;
+  int varieties = 0;
+};
+
+}  // namespace
+
+RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
+  const auto t_start = Clock::now();
+  RunResult res;
+  Report& rep = res.report;
+  rep.dimension = spec.entity.dimension();
+  const Motion& motion = spec.motion.motion;
+  auto fail = [&](const std::string& msg) {
+    rep.status = "failed";
+    rep.message = msg;
+    rep.seconds_total = since(t_start);
+    return res;
+  };
+  if (motion.dof() != 1)
+    return fail("motions of " + std::to_string(motion.dof()) + " joints are not supported yet (one joint only)");
+  try {
+    ScrewJoint j = motion.joints[0];
+    double T = j.hi - j.lo;
+    if (j.type == JointType::Revolute && T >= 2 * M_PI) T = 2 * M_PI;  // a full turn covers everything
+    const Eigen::Isometry3d start = j.transform(j.lo) * motion.home;
+
+    // Size and tolerance from the entity.
+    double fit_err = 0;
+    TopoDS_Shape raw = entity_shape(spec.entity, 1e-9, &fit_err);
+    Bnd_Box eb;
+    BRepBndLib::Add(raw, eb);
+    double xmin, ymin, zmin, xmax, ymax, zmax;
+    eb.Get(xmin, ymin, zmin, xmax, ymax, zmax);
+    const double esize = std::max({xmax - xmin, ymax - ymin, zmax - zmin, 1e-300});
+    const double size = esize + (j.type == JointType::Prismatic ? T : 0) +
+                        (j.is_rotation() ? std::abs(j.pitch) * T : 0);
+    rep.tol_requested = spec.tolerance > 0 ? spec.tolerance : 1e-6 * size;
+    const double tol = rep.tol_requested;
+    const double fit_tol = 0.01 * tol;
+    if (spec.entity.kind == EntityKind::Curve || spec.entity.kind == EntityKind::Surface) {
+      fit_err = 0;
+      raw = entity_shape(spec.entity, fit_tol, &fit_err);
+    }
+    TopoDS_Shape body = moved(raw, start);
+    rep.seconds["entity"] = since(t_start);
+
+    // Candidate varieties.
+    const auto t_cand = Clock::now();
+    Candidates cand;
+    const bool full_turn = j.type == JointType::Revolute && T >= 2 * M_PI - 1e-12;
+    TopoDS_Shape body1 = moved(body, j.transform(T));
+    auto add_faces = [&](const TopoDS_Shape& s) {
+      for (TopExp_Explorer ex(s, TopAbs_FACE); ex.More(); ex.Next()) cand.faces.push_back(TopoDS::Face(ex.Current()));
+    };
+    add_faces(body);
+    if (!full_turn) add_faces(body1);
+    if (rep.dimension >= 2) cand.varieties += 2;
+    TopTools_IndexedMapOfShape edges, faces;
+    TopExp::MapShapes(body, TopAbs_EDGE, edges);
+    TopExp::MapShapes(body, TopAbs_FACE, faces);
+    auto is_seam = [&](const TopoDS_Edge& e) {
+      for (int k = 1; k <= faces.Extent(); ++k)
+        if (BRep_Tool::IsClosed(e, TopoDS::Face(faces(k)))) return true;
+      return false;
+    };
+    for (int k = 1; k <= edges.Extent(); ++k) {
+      TopoDS_Edge e = TopoDS::Edge(edges(k));
+      if (BRep_Tool::Degenerated(e) || is_seam(e)) continue;
+      double f, l;
+      Handle(Geom_Curve) c = BRep_Tool::Curve(e, f, l);
+      if (c.IsNull()) continue;
+      auto sw = sweep_curve(c, f, l, j, T, tol, &fit_err);
+      if (!sw.empty()) ++cand.varieties;
+      cand.faces.insert(cand.faces.end(), sw.begin(), sw.end());
+    }
+    for (int k = 1; k <= faces.Extent(); ++k) {
+      for (const auto& g : grazing_curves(TopoDS::Face(faces(k)), j, fit_tol, esize)) {
+        double f = g.first, l = g.last;
+      Handle(Geom_Curve) cc = canonical_curve(g.curve, f, l, fit_tol);
+      auto sw = sweep_curve(cc, f, l, j, T, tol, &fit_err);
+        if (!sw.empty()) ++cand.varieties;
+        cand.faces.insert(cand.faces.end(), sw.begin(), sw.end());
+      }
+    }
+    rep.varieties = cand.varieties;
+    rep.seconds["varieties"] = since(t_cand);
+
+    if (rep.dimension < 2) {
+      return fail("sweeps of points and curves (results of dimension " + std::to_string(rep.dimension + 1) +
+                  ") are not written as solids yet");
+    }
+
+    // Arrangement of all candidate faces.
+    const auto t_arr = Clock::now();
+    BOPAlgo_MakerVolume mv;
+    TopTools_ListOfShape args;
+    for (const auto& f : cand.faces) args.Append(f);
+    mv.SetArguments(args);
+    mv.SetRunParallel(false);
+    mv.SetFuzzyValue(std::max(1e-7 * size, 10 * fit_err));
+    mv.SetNonDestructive(true);
+    mv.Perform();
+    if (const char* dump = std::getenv("SWEEP_DUMP_CANDIDATES")) {
+      TopoDS_Compound comp;
+      BRep_Builder bb;
+      bb.MakeCompound(comp);
+      for (const auto& f : cand.faces) bb.Add(comp, f);
+      BRepTools::Write(comp, dump);
+    }
+    if (mv.HasErrors()) {
+      std::ostringstream why;
+      mv.DumpErrors(why);
+      return fail("the arrangement of the candidate faces failed: " + why.str());
+    }
+    rep.seconds["arrangement"] = since(t_arr);
+
+    // Classify cells.
+    const auto t_cls = Clock::now();
+    const bool solid_entity = rep.dimension == 3;
+    std::vector<TopoDS_Solid> kept;
+    int ncells = 0;
+    for (TopExp_Explorer ex(mv.Shape(), TopAbs_SOLID); ex.More(); ex.Next()) {
+      ++ncells;
+      TopoDS_Solid cell = TopoDS::Solid(ex.Current());
+      Eigen::Vector3d p;
+      if (!interior_point(cell, size, &p)) {
+        GProp_GProps g;
+        BRepGProp::VolumeProperties(cell, g);
+        if (std::abs(g.Mass()) < 1e-9 * size * size * size) continue;  // a sliver of nothing
+        return fail("no interior point found for a cell of volume " + std::to_string(g.Mass()));
+      }
+      if (swept_by_trajectory(body, solid_entity, j, T, p, 1e-9 * size)) kept.push_back(cell);
+    }
+    rep.cells = ncells;
+    rep.seconds["classification"] = since(t_cls);
+    if (kept.empty()) return fail("no cell of the arrangement is in the swept set");
+
+    // Union of the kept cells (they share faces exactly), then merge same-domain faces.
+    const auto t_build = Clock::now();
+    TopoDS_Shape result;
+    if (kept.size() == 1) {
+      result = kept[0];
+    } else {
+      BRepAlgoAPI_Fuse fuse;
+      TopTools_ListOfShape a, t;
+      a.Append(kept[0]);
+      for (std::size_t k = 1; k < kept.size(); ++k) t.Append(kept[k]);
+      fuse.SetArguments(a);
+      fuse.SetTools(t);
+      fuse.SetRunParallel(false);
+      fuse.SetGlue(BOPAlgo_GlueShift);
+      fuse.Build();
+      if (!fuse.IsDone() || fuse.HasErrors()) return fail("the union of the swept cells failed");
+      result = fuse.Shape();
+    }
+    ShapeUpgrade_UnifySameDomain unify(result, true, true, true);
+    unify.Build();
+    result = unify.Shape();
+    rep.seconds["build"] = since(t_build);
+
+    // Validation.
+    const auto t_val = Clock::now();
+    BRepCheck_Analyzer check(result);
+    rep.valid = check.IsValid();
+    int nsolids = 0;
+    for (TopExp_Explorer ex(result, TopAbs_SOLID); ex.More(); ex.Next()) ++nsolids;
+    ShapeAnalysis_Shell sas;
+    sas.LoadShells(result);
+    bool bad = sas.CheckOrientedShells(result, true);
+    rep.closed = nsolids > 0 && !bad && !sas.HasFreeEdges();
+    for (TopExp_Explorer ex(result, TopAbs_FACE); ex.More(); ex.Next()) ++rep.faces;
+    GProp_GProps gv, ga;
+    BRepGProp::VolumeProperties(result, gv);
+    BRepGProp::SurfaceProperties(result, ga);
+    rep.volume_brep = gv.Mass();
+    rep.area = ga.Mass();
+    gp_Pnt c = gv.CentreOfMass();
+    rep.centroid[0] = c.X();
+    rep.centroid[1] = c.Y();
+    rep.centroid[2] = c.Z();
+    Bnd_Box bb;
+    BRepBndLib::AddOptimal(result, bb, false, false);
+    bb.Get(rep.bbox_min[0], rep.bbox_min[1], rep.bbox_min[2], rep.bbox_max[0], rep.bbox_max[1], rep.bbox_max[2]);
+    rep.volume_divergence = divergence_volume(result);
+    rep.tol_achieved = std::max(fit_err, max_tolerance(result));
+    rep.seconds["validation"] = since(t_val);
+
+    if (opt.verify) {
+      const auto t_mc = Clock::now();
+      Eigen::AlignedBox3d box(Eigen::Vector3d(rep.bbox_min[0], rep.bbox_min[1], rep.bbox_min[2]),
+                              Eigen::Vector3d(rep.bbox_max[0], rep.bbox_max[1], rep.bbox_max[2]));
+      box.extend(box.min() - Eigen::Vector3d::Constant(0.01 * size));
+      box.extend(box.max() + Eigen::Vector3d::Constant(0.01 * size));
+      MonteCarloResult mc;
+      if (auto sd = make_signed_distance(spec.entity)) {
+        Motion m = motion;
+        if (full_turn) m.joints[0].hi = m.joints[0].lo + T;
+        mc = monte_carlo_volume([&](const Eigen::Vector3d& x) { return in_swept_set(*sd, m, x, 1e-9 * size); },
+                                box, opt.mc_samples, opt.mc_seed);
+      } else {
+        mc = monte_carlo_volume(
+            [&](const Eigen::Vector3d& x) { return swept_by_trajectory(body, solid_entity, j, T, x, 1e-9 * size); },
+            box, std::min<std::size_t>(opt.mc_samples, 20000), opt.mc_seed);
+      }
+      rep.has_mc = true;
+      rep.volume_mc = mc.volume;
+      rep.volume_mc_stderr = mc.stderr_;
+      rep.seconds["monte_carlo"] = since(t_mc);
+    }
+
+    // Verdict.
+    const double vtol = std::max(10 * rep.tol_achieved, tol) * rep.area + 1e-9 * std::abs(rep.volume_brep);
+    std::string why;
+    if (!rep.valid) why = "the solid is not valid (BRepCheck)";
+    else if (!rep.closed) why = "the solid is not closed";
+    else if (rep.volume_brep <= 0) why = "the solid has no volume";
+    else if (std::abs(rep.volume_brep - rep.volume_divergence) > vtol)
+      why = "B-rep and divergence volumes disagree (" + std::to_string(rep.volume_brep) + " vs " +
+            std::to_string(rep.volume_divergence) + ")";
+    else if (rep.has_mc && std::abs(rep.volume_brep - rep.volume_mc) > 4.5 * rep.volume_mc_stderr + vtol)
+      why = "B-rep and Monte Carlo volumes disagree (" + std::to_string(rep.volume_brep) + " vs " +
+            std::to_string(rep.volume_mc) + " +- " + std::to_string(rep.volume_mc_stderr) + ")";
+    rep.status = why.empty() ? "ok" : "failed";
+    rep.message = why;
+    res.shape = std::make_shared<Shape>(result);
+  } catch (const InputError&) {
+    throw;
+  } catch (const Standard_Failure& f) {
+    return fail(std::string("OCCT: ") + (f.GetMessageString() ? f.GetMessageString() : "failure"));
+  } catch (const ComputeError& e) {
+    return fail(e.what());
+  }
+  rep.seconds_total = since(t_start);
+  return res;
+}
+
+}  // namespace sweep::occt
