@@ -11,6 +11,12 @@
 #include <GeomAPI_ProjectPointOnCurve.hxx>
 #include <Geom2d_Curve.hxx>
 #include <Geom_BSplineCurve.hxx>
+#include <ElCLib.hxx>
+#include <GC_MakeCircle.hxx>
+#include <Geom_Circle.hxx>
+#include <Geom_Line.hxx>
+#include <gp_Circ.hxx>
+#include <gp_Lin.hxx>
 #include <TColgp_Array1OfPnt.hxx>
 #include <TopExp_Explorer.hxx>
 #include <TopoDS.hxx>
@@ -336,6 +342,54 @@ std::vector<GrazingCurve> grazing_curves(const TopoDS_Face& face, const ScrewJoi
       double len = 0;
       for (std::size_t k = 1; k < q.size(); ++k) len += q[k].Distance(q[k - 1]);
       if (len < 1e-7 * size) continue;
+      // Lines and circles (grazing curves of planes, spheres, cylinders...) are kept exact: the
+      // points are roots of g to rounding, so three of them define the curve.
+      {
+        const double etol = 1e-10 * size;
+        auto all_within = [&](auto dist) {
+          for (const auto& p : q)
+            if (dist(p) > etol) return false;
+          return true;
+        };
+        gp_Pnt a = q.front(), b = q.back(), m = q[q.size() / 2];
+        if (a.Distance(b) > etol) {
+          gp_Lin lin(a, gp_Dir(gp_Vec(a, b)));
+          if (all_within([&](const gp_Pnt& p) { return lin.Distance(p); })) {
+            GrazingCurve gc;
+            gc.curve = new Geom_Line(lin);
+            gc.first = 0;
+            gc.last = a.Distance(b);
+            out.push_back(gc);
+            continue;
+          }
+        }
+        gp_Pnt m1 = q[q.size() / 3], m2 = q[(2 * q.size()) / 3];
+        GC_MakeCircle mk(a, m1, m2);
+        if (q.size() >= 6 && mk.IsDone()) {
+          gp_Circ circ = mk.Value()->Circ();
+          if (all_within([&](const gp_Pnt& p) { return circ.Distance(p); })) {
+            // orient the circle so that its parameter follows the points
+            double f = ElCLib::Parameter(circ, a), t1 = ElCLib::Parameter(circ, m1);
+            if (std::remainder(t1 - f, 2 * M_PI) < 0) {
+              gp_Ax2 ax = circ.Position();
+              ax.SetDirection(ax.Direction().Reversed());
+              circ = gp_Circ(ax, circ.Radius());
+              f = ElCLib::Parameter(circ, a);
+            }
+            double l = ElCLib::Parameter(circ, b);
+            while (l <= f + 1e-12) l += 2 * M_PI;
+            while (l > f + 2 * M_PI + 1e-12) l -= 2 * M_PI;
+            if (a.Distance(b) <= etol) l = f + 2 * M_PI;
+            (void)m;
+            GrazingCurve gc;
+            gc.curve = new Geom_Circle(circ);
+            gc.first = f;
+            gc.last = l;
+            out.push_back(gc);
+            continue;
+          }
+        }
+      }
       TColgp_Array1OfPnt arr(1, int(q.size()));
       for (std::size_t k = 0; k < q.size(); ++k) arr.SetValue(int(k) + 1, q[k]);
       Handle(Geom_BSplineCurve) c;

@@ -124,7 +124,7 @@ std::string shape_to_brep_string(const Shape& shape) {
 double file_volume(const std::string& path) {
   TopoDS_Shape s = read_shape_file(path, "");
   GProp_GProps g;
-  BRepGProp::VolumeProperties(s, g);
+  BRepGProp::VolumeProperties(s, g, 1e-10);
   return g.Mass();
 }
 

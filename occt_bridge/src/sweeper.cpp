@@ -227,6 +227,12 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
       double f, l;
       Handle(Geom_Curve) c = BRep_Tool::Curve(e, f, l);
       if (c.IsNull()) continue;
+      {  // collapsed edges (poles of parametric surfaces) sweep nothing
+        double spread = 0;
+        gp_Pnt p0 = c->Value(f);
+        for (int k = 1; k <= 8; ++k) spread = std::max(spread, p0.Distance(c->Value(f + (l - f) * k / 8.0)));
+        if (spread < 1e-9 * esize) continue;
+      }
       auto sw = sweep_curve(c, f, l, j, T, tol, &fit_err);
       if (!sw.empty()) ++cand.varieties;
       cand.faces.insert(cand.faces.end(), sw.begin(), sw.end());
@@ -328,8 +334,8 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
     rep.closed = nsolids > 0 && !bad && !sas.HasFreeEdges();
     for (TopExp_Explorer ex(result, TopAbs_FACE); ex.More(); ex.Next()) ++rep.faces;
     GProp_GProps gv, ga;
-    BRepGProp::VolumeProperties(result, gv);
-    BRepGProp::SurfaceProperties(result, ga);
+    BRepGProp::VolumeProperties(result, gv, 1e-10);
+    BRepGProp::SurfaceProperties(result, ga, 1e-10);
     rep.volume_brep = gv.Mass();
     rep.area = ga.Mass();
     gp_Pnt c = gv.CentreOfMass();

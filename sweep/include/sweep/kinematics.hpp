@@ -93,8 +93,8 @@ const char* to_string(ConstraintType t);
 /// The number of basic components (degree of constraint): 4, 3, 3, 2, 2, 2.
 int degree_of_constraint(ConstraintType t);
 
-/// Two axes of the two parts lie on one line: two dot-1 (a_i = s1, a_j ⟂ s2) and two dot-2
-/// (a_i ⟂ s1, through axis2.point). Cylindrical joint.
+/// Two axes of the two parts lie on one line: two dot-1 (a_i = s1, a_j perpendicular to s2) and two dot-2
+/// (a_i perpendicular to s1, through axis2.point). Cylindrical joint.
 std::vector<Wrench> coaxial_wrenches(const Axis& axis1, const Axis& axis2);
 /// Two planes coincide: two dot-1 (a_i = n1, a_j in plane 2) and one dot-2 (a_i = n1, through
 /// plane2.point). Planar joint.
@@ -106,7 +106,7 @@ std::vector<Wrench> align_wrenches(const Plane& plane1, const Plane& plane2);
 /// A line of part 1 stays parallel to a plane of part 2 at a fixed distance: one dot-1 (the couple
 /// n2 x s1) and one dot-2 (a_i = n2 on part 2, through axis1.point). Four dof.
 std::vector<Wrench> line_surface_distance_wrenches(const Axis& axis1, const Plane& plane2);
-/// A point of part 1 stays on a line of part 2: two dot-2 (a_i ⟂ s2 on part 2, through point1).
+/// A point of part 1 stays on a line of part 2: two dot-2 (a_i perpendicular to s2 on part 2, through point1).
 /// Four dof.
 std::vector<Wrench> point_on_line_wrenches(const Vec3& point1, const Axis& axis2);
 
@@ -118,7 +118,7 @@ struct GeometryConstraint {
   Axis axis1, axis2;                 ///< coaxial; line_surface_distance (axis1); point_on_line (axis2)
   Plane plane1, plane2;              ///< coplanar, align; line_surface_distance (plane2)
   Vec3 point1 = Vec3::Zero(), point2 = Vec3::Zero();  ///< spherical; point_on_line (point1)
-  double distance = 0.0;             ///< line_surface_distance, >= 0
+  double distance = 0.0;                              ///< line_surface_distance, >= 0
 };
 
 /// The basic components of a constraint as wrenches, in the order documented above.
@@ -174,7 +174,8 @@ struct Joint {
   /// [0; n x u]; p is the point of the axis nearest to the origin, s and n unit with their largest
   /// component positive. Otherwise the reduced row echelon form of the space (empty for fixed).
   ScrewBasis twists;
-  Vec3 point = Vec3::Zero();      ///< revolute, helical, cylindrical: axis point nearest the origin; spherical: centre
+  Vec3 point =
+      Vec3::Zero();  ///< revolute, helical, cylindrical: axis point nearest the origin; spherical: centre
   Vec3 direction = Vec3::Zero();  ///< revolute, prismatic, helical, cylindrical: axis; planar: normal
   double pitch = 0.0;             ///< helical: length per radian (SPEC pitch = 2 pi times this)
 
@@ -224,8 +225,8 @@ struct Assembly {
   std::vector<std::string> parts;  ///< unique, non-empty
   int ground = 0;                  ///< index into parts
   std::vector<GeometryConstraint> constraints;
-  std::vector<RangeSpec> ranges;   ///< from "ranges" and constraint-level "range"
-  double tolerance = 0.0;          ///< "tolerance" in model units; 0 = relative default
+  std::vector<RangeSpec> ranges;  ///< from "ranges" and constraint-level "range"
+  double tolerance = 0.0;         ///< "tolerance" in model units; 0 = relative default
 
   int part_index(const std::string& name) const;  ///< -1 when unknown
   /// "a-b" with the parts in the order of `parts`.
@@ -257,9 +258,10 @@ struct PairJoint {
 /// The joint graph of an assembly and the mobility of each part relative to the ground.
 struct Analysis {
   NumericFrame frame;
-  std::vector<PairJoint> joints;          ///< sorted by (parts[0], parts[1])
-  std::vector<int> part_dof;              ///< per part; 0 for the ground
-  std::vector<ScrewBasis> part_twists;    ///< per part, world coordinates: all its twists relative to the ground
+  std::vector<PairJoint> joints;  ///< sorted by (parts[0], parts[1])
+  std::vector<int> part_dof;      ///< per part; 0 for the ground
+  std::vector<ScrewBasis>
+      part_twists;         ///< per part, world coordinates: all its twists relative to the ground
   int mobility = 0;        ///< dimension of the instantaneous motions of the whole assembly
   int loop_redundant = 0;  ///< wrench components made redundant by closed loops of the graph
 
