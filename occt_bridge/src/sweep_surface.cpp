@@ -119,6 +119,15 @@ std::vector<TopoDS_Face> planar_segment_sweep(const gp_Pnt& a, const gp_Pnt& b, 
   return out;
 }
 
+TopoDS_Edge edge_of(const Handle(Geom_Curve)& c, double first, double last) {
+  BRepBuilderAPI_MakeEdge mk(c, first, last);
+  if (!mk.IsDone())
+    throw ComputeError("could not build an edge on a " + std::string(c->DynamicType()->Name()) + " from " +
+                       std::to_string(first) + " to " + std::to_string(last) + " (error " +
+                       std::to_string(int(mk.Error())) + ")");
+  return mk.Edge();
+}
+
 }  // namespace
 
 Handle(Geom_Curve) canonical_curve(const Handle(Geom_Curve)& c0, double& first, double& last, double tol) {
@@ -179,8 +188,10 @@ std::vector<TopoDS_Face> sweep_curve(const Handle(Geom_Curve)& c, double first, 
   };
   if (j.type == JointType::Prismatic) {
     // BRepSweep gives exact planes and cylinders where the curve is a line or a circle.
-    TopoDS_Edge e = BRepBuilderAPI_MakeEdge(c, first, last).Edge();
-    faces_of(BRepPrimAPI_MakePrism(e, to_vec(j.direction) * T).Shape());
+    TopoDS_Edge e = edge_of(c, first, last);
+    BRepPrimAPI_MakePrism mk(e, to_vec(j.direction) * T);
+    if (!mk.IsDone()) throw ComputeError("could not extrude a curve");
+    faces_of(mk.Shape());
     return out;
   }
   const bool screw = j.type == JointType::Helical && std::abs(j.pitch) > 0;
@@ -240,12 +251,14 @@ std::vector<TopoDS_Face> sweep_curve(const Handle(Geom_Curve)& c, double first, 
       }
     }
     const gp_Ax1 axis(to_pnt(j.point), gp_Dir(to_vec(j.direction)));
-    TopoDS_Edge e = BRepBuilderAPI_MakeEdge(c, first, last).Edge();
+    TopoDS_Edge e = edge_of(c, first, last);
     for (int k = 0; k < pieces; ++k) {
       gp_Trsf r;
       r.SetRotation(axis, T * k / pieces);
       TopoDS_Shape ek = BRepBuilderAPI_Transform(e, r, true).Shape();
-      faces_of(BRepPrimAPI_MakeRevol(ek, axis, T / pieces).Shape());
+      BRepPrimAPI_MakeRevol mk(ek, axis, T / pieces);
+      if (!mk.IsDone()) throw ComputeError("could not revolve a curve");
+      faces_of(mk.Shape());
     }
     return out;
   }

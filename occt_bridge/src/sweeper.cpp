@@ -233,6 +233,7 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
         for (int k = 1; k <= 8; ++k) spread = std::max(spread, p0.Distance(c->Value(f + (l - f) * k / 8.0)));
         if (spread < 1e-9 * esize) continue;
       }
+      c = canonical_curve(c, f, l, std::max(fit_tol, 1e-10 * esize));
       auto sw = sweep_curve(c, f, l, j, T, tol, &fit_err);
       if (!sw.empty()) ++cand.varieties;
       cand.faces.insert(cand.faces.end(), sw.begin(), sw.end());
