@@ -115,6 +115,7 @@ TopoDS_Shape read_shape_file(const std::string& path, const std::string& pointer
   std::string ext = path.substr(path.find_last_of('.') + 1);
   std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
   TopoDS_Shape s;
+  quiet_occt();
   try {
     if (ext == "brep") {
       BRep_Builder b;

@@ -54,6 +54,9 @@ std::vector<TopoDS_Face> sweep_curve(const Handle(Geom_Curve)& c, double first, 
 /// theorem in each face's parameter domain along its pcurves.
 double divergence_volume(const TopoDS_Shape& solid);
 
+/// Keeps OCCT's translators from printing to stdout (stdout carries the report).
+void quiet_occt();
+
 /// Reads a STEP or BREP file into a shape. @throws InputError at `pointer` when unreadable.
 TopoDS_Shape read_shape_file(const std::string& path, const std::string& pointer);
 

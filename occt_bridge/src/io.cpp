@@ -5,6 +5,9 @@
 #include <BRep_Tool.hxx>
 #include <GProp_GProps.hxx>
 #include <Interface_Static.hxx>
+#include <Message.hxx>
+#include <Message_Messenger.hxx>
+#include <Message_PrinterOStream.hxx>
 #include <Poly_Triangulation.hxx>
 #include <STEPControl_Writer.hxx>
 #include <Standard_Failure.hxx>
@@ -71,6 +74,13 @@ void write_off(const TopoDS_Shape& s, const std::string& path) {
 
 }  // namespace
 
+void quiet_occt() {
+  static bool done = false;
+  if (done) return;
+  done = true;
+  Message::DefaultMessenger()->RemovePrinters(STANDARD_TYPE(Message_PrinterOStream));
+}
+
 bool supported_output(const std::string& path) {
   std::string e = extension(path);
   return e == "step" || e == "stp" || e == "brep" || e == "stl" || e == "off";
@@ -81,6 +91,7 @@ void write_shape(const Shape& shape, const std::string& path, double mesh_tolera
   if (!supported_output(path))
     throw InputError("-o", "unsupported output extension '." + e + "' (expected .step, .stp, .brep, .stl or .off)");
   const std::string tmp = path + ".partial";
+  quiet_occt();
   try {
     const TopoDS_Shape& s = shape.shape;
     bool ok = true;
