@@ -2,6 +2,7 @@
 // solid -> validation and report.
 #include <BOPAlgo_MakerVolume.hxx>
 #include <BRepAlgoAPI_Fuse.hxx>
+#include <BRepAlgoAPI_Splitter.hxx>
 #include <BRepBndLib.hxx>
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_Transform.hxx>
@@ -18,6 +19,7 @@
 #include <Bnd_Box.hxx>
 #include <GProp_GProps.hxx>
 #include <GeomAPI_PointsToBSpline.hxx>
+#include <GeomAPI_ProjectPointOnSurf.hxx>
 #include <GeomAdaptor_Curve.hxx>
 #include <Geom_BSplineCurve.hxx>
 #include <Geom_Circle.hxx>
@@ -34,6 +36,7 @@
 #include <TopoDS.hxx>
 #include <TopoDS_Compound.hxx>
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <sstream>
 #include <cmath>
@@ -206,12 +209,6 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
     const auto t_cand = Clock::now();
     Candidates cand;
     const bool full_turn = j.type == JointType::Revolute && T >= 2 * M_PI - 1e-12;
-    TopoDS_Shape body1 = moved(body, j.transform(T));
-    auto add_faces = [&](const TopoDS_Shape& s) {
-      for (TopExp_Explorer ex(s, TopAbs_FACE); ex.More(); ex.Next()) cand.faces.push_back(TopoDS::Face(ex.Current()));
-    };
-    add_faces(body);
-    if (!full_turn) add_faces(body1);
     if (rep.dimension >= 2) cand.varieties += 2;
     TopTools_IndexedMapOfShape edges, faces;
     TopExp::MapShapes(body, TopAbs_EDGE, edges);
@@ -238,21 +235,141 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
       if (!sw.empty()) ++cand.varieties;
       cand.faces.insert(cand.faces.end(), sw.begin(), sw.end());
     }
+    // Grazing curves: their sweeps are candidates, and they split the entity's faces into pieces
+    // where n . v keeps one sign (each piece is then wholly inside the swept set or partly on its
+    // boundary, which lets the pruning below decide piece by piece).
+    std::vector<TopoDS_Face> pieces;
     for (int k = 1; k <= faces.Extent(); ++k) {
-      for (const auto& g : grazing_curves(TopoDS::Face(faces(k)), j, fit_tol, esize)) {
+      const TopoDS_Face& face = TopoDS::Face(faces(k));
+      TopTools_ListOfShape tools;
+      for (const auto& g : grazing_curves(face, j, fit_tol, esize)) {
         double f = g.first, l = g.last;
-      Handle(Geom_Curve) cc = canonical_curve(g.curve, f, l, fit_tol);
-      auto sw = sweep_curve(cc, f, l, j, T, tol, &fit_err);
+        Handle(Geom_Curve) cc = canonical_curve(g.curve, f, l, fit_tol);
+        auto sw = sweep_curve(cc, f, l, j, T, tol, &fit_err);
         if (!sw.empty()) ++cand.varieties;
         cand.faces.insert(cand.faces.end(), sw.begin(), sw.end());
+        tools.Append(BRepBuilderAPI_MakeEdge(cc, f, l).Edge());
       }
+      bool split = false;
+      if (!tools.IsEmpty()) {
+        BRepAlgoAPI_Splitter splitter;
+        TopTools_ListOfShape args;
+        args.Append(face);
+        splitter.SetArguments(args);
+        splitter.SetTools(tools);
+        splitter.SetRunParallel(false);
+        splitter.SetFuzzyValue(1e-9 * esize);
+        splitter.Build();
+        if (splitter.IsDone() && !splitter.HasErrors()) {
+          for (TopExp_Explorer ex(splitter.Shape(), TopAbs_FACE); ex.More(); ex.Next())
+            pieces.push_back(TopoDS::Face(ex.Current()));
+          split = true;
+        }
+      }
+      if (!split) pieces.push_back(face);
+    }
+    for (const auto& f : pieces) {
+      cand.faces.push_back(f);
+      if (!full_turn) cand.faces.push_back(TopoDS::Face(moved(f, j.transform(T))));
     }
     rep.varieties = cand.varieties;
     rep.seconds["varieties"] = since(t_cand);
 
+    // Point membership: the certified analytic test for primitive solids, else the trajectory test.
+    const bool solid_entity = rep.dimension == 3;
+    Motion stage = motion;
+    stage.joints[0].hi = stage.joints[0].lo + T;
+    std::unique_ptr<SignedDistance> sd = make_signed_distance(spec.entity);
+    auto member = [&](const Eigen::Vector3d& x) {
+      if (sd) return in_swept_set(*sd, stage, x, 1e-9 * size);
+      return swept_by_trajectory(body, solid_entity, j, T, x, 1e-9 * size);
+    };
+
+    // Drop candidates that lie inside the swept set: sample points of the face's interior with
+    // both sides in the set. Keeping a face is always safe; dropping internal ones spares the
+    // arrangement needless (often tangential) intersections.
+    if (rep.dimension == 3) {
+      const auto t_prune = Clock::now();
+      // A quick test with a comfortable offset; a sample that fails it (near the boundary, or at a
+      // point where an internal face touches the boundary) is tested again with the trajectory
+      // test at an offset just above the geometric error.
+      const double delta = 1e-4 * size, fine = std::max(1e-7 * size, 20 * fit_err);
+      auto traj = [&](const Eigen::Vector3d& x) { return swept_by_trajectory(body, solid_entity, j, T, x, 1e-10 * size); };
+      std::vector<TopoDS_Face> keep;
+      for (const auto& f : cand.faces) {
+        double u0, u1, v0, v1;
+        BRepTools::UVBounds(f, u0, u1, v0, v1);
+        BRepTopAdaptor_FClass2d fc(f, 1e-9);
+        BRepAdaptor_Surface S(f);
+        const int n = 7;
+        int tested = 0;
+        bool internal = true;
+        for (int a = 0; a < n && internal; ++a)
+          for (int b = 0; b < n && internal; ++b) {
+            gp_Pnt2d uv(u0 + (u1 - u0) * (a + 0.5) / n, v0 + (v1 - v0) * (b + 0.5) / n);
+            if (fc.Perform(uv) != TopAbs_IN) continue;
+            BRepLProp_SLProps props(S, uv.X(), uv.Y(), 1, 1e-9);
+            if (!props.IsNormalDefined()) continue;
+            Eigen::Vector3d p = to_eigen(props.Value()), nn = to_eigen(gp_Vec(props.Normal()));
+            ++tested;
+            if ((!member(p + delta * nn) || !member(p - delta * nn)) && (!traj(p + fine * nn) || !traj(p - fine * nn)))
+              internal = false;
+          }
+        if (!internal || tested < 4) keep.push_back(f);
+      }
+      rep.seconds["pruning"] = since(t_prune);
+      cand.faces.swap(keep);
+    }
+
     if (rep.dimension < 2) {
       return fail("sweeps of points and curves (results of dimension " + std::to_string(rep.dimension + 1) +
                   ") are not written as solids yet");
+    }
+
+    // Drop duplicate candidates (the same face reached twice, e.g. by symmetric edges): the
+    // general fuse handles coincident analytic faces, but not coincident general ones.
+    {
+      std::vector<TopoDS_Face> uniq;
+      std::vector<std::pair<double, Bnd_Box>> props;
+      auto lies_on = [&](const TopoDS_Face& a, const TopoDS_Face& b) {
+        double u0, u1, v0, v1;
+        BRepTools::UVBounds(a, u0, u1, v0, v1);
+        BRepAdaptor_Surface SA(a);
+        BRepTopAdaptor_FClass2d fa(a, 1e-9);
+        Handle(Geom_Surface) gb = BRep_Tool::Surface(b);
+        BRepTopAdaptor_FClass2d fb(b, 1e-9);
+        int n = 0;
+        for (int i = 0; i < 5; ++i)
+          for (int k = 0; k < 5; ++k) {
+            gp_Pnt2d uv(u0 + (u1 - u0) * (i + 0.5) / 5, v0 + (v1 - v0) * (k + 0.5) / 5);
+            if (fa.Perform(uv) != TopAbs_IN) continue;
+            gp_Pnt p = SA.Value(uv.X(), uv.Y());
+            GeomAPI_ProjectPointOnSurf proj(p, gb);
+            if (proj.NbPoints() == 0 || proj.LowerDistance() > 1e-7 * size) return false;
+            double pu, pv;
+            proj.LowerDistanceParameters(pu, pv);
+            if (fb.Perform(gp_Pnt2d(pu, pv)) == TopAbs_OUT) return false;
+            ++n;
+          }
+        return n >= 3;
+      };
+      for (const auto& f : cand.faces) {
+        GProp_GProps g;
+        BRepGProp::SurfaceProperties(f, g);
+        Bnd_Box b;
+        BRepBndLib::Add(f, b);
+        bool dup = false;
+        for (std::size_t k = 0; k < uniq.size() && !dup; ++k) {
+          if (std::abs(props[k].first - g.Mass()) > 1e-6 * std::max(g.Mass(), 1e-300)) continue;
+          if (props[k].second.IsOut(b) || b.IsOut(props[k].second)) continue;
+          dup = lies_on(f, uniq[k]) && lies_on(uniq[k], f);
+        }
+        if (!dup) {
+          uniq.push_back(f);
+          props.push_back({g.Mass(), b});
+        }
+      }
+      cand.faces.swap(uniq);
     }
 
     // Arrangement of all candidate faces.
@@ -265,7 +382,7 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
     mv.SetFuzzyValue(std::max(1e-7 * size, 10 * fit_err));
     mv.SetNonDestructive(true);
     mv.Perform();
-    if (const char* dump = std::getenv("SWEEP_DUMP_CANDIDATES")) {
+    if (const char* dump = std::getenv("SWEEP_DUMP_CANDIDATES")) {  // diagnostics: the arrangement's input
       TopoDS_Compound comp;
       BRep_Builder bb;
       bb.MakeCompound(comp);
@@ -281,7 +398,6 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
 
     // Classify cells.
     const auto t_cls = Clock::now();
-    const bool solid_entity = rep.dimension == 3;
     std::vector<TopoDS_Solid> kept;
     int ncells = 0;
     for (TopExp_Explorer ex(mv.Shape(), TopAbs_SOLID); ex.More(); ex.Next()) {
@@ -294,7 +410,7 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
         if (std::abs(g.Mass()) < 1e-9 * size * size * size) continue;  // a sliver of nothing
         return fail("no interior point found for a cell of volume " + std::to_string(g.Mass()));
       }
-      if (swept_by_trajectory(body, solid_entity, j, T, p, 1e-9 * size)) kept.push_back(cell);
+      if (member(p)) kept.push_back(cell);
     }
     rep.cells = ncells;
     rep.seconds["classification"] = since(t_cls);
@@ -356,17 +472,8 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
                               Eigen::Vector3d(rep.bbox_max[0], rep.bbox_max[1], rep.bbox_max[2]));
       box.extend(box.min() - Eigen::Vector3d::Constant(0.01 * size));
       box.extend(box.max() + Eigen::Vector3d::Constant(0.01 * size));
-      MonteCarloResult mc;
-      if (auto sd = make_signed_distance(spec.entity)) {
-        Motion m = motion;
-        if (full_turn) m.joints[0].hi = m.joints[0].lo + T;
-        mc = monte_carlo_volume([&](const Eigen::Vector3d& x) { return in_swept_set(*sd, m, x, 1e-9 * size); },
-                                box, opt.mc_samples, opt.mc_seed);
-      } else {
-        mc = monte_carlo_volume(
-            [&](const Eigen::Vector3d& x) { return swept_by_trajectory(body, solid_entity, j, T, x, 1e-9 * size); },
-            box, std::min<std::size_t>(opt.mc_samples, 20000), opt.mc_seed);
-      }
+      const std::size_t samples = sd ? opt.mc_samples : std::min<std::size_t>(opt.mc_samples, 20000);
+      MonteCarloResult mc = monte_carlo_volume(member, box, samples, opt.mc_seed);
       rep.has_mc = true;
       rep.volume_mc = mc.volume;
       rep.volume_mc_stderr = mc.stderr_;
