@@ -3,6 +3,7 @@
 #include <cstring>
 #include <fstream>
 #include <iostream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -128,8 +129,16 @@ int main(int argc, char** argv) {
     if (cmd == "joints") return sweep_joints_main(argc - 1, argv + 1);
     std::cerr << "sweepvol: unknown command '" << cmd << "'\n" << kUsage;
     return 2;
-  } catch (const sweep::InputError& e) {
+  } catch (sweep::InputError& e) {
     std::string src = argc > 2 && argv[2][0] != '-' ? argv[2] : "";
+    if (e.line() == 0 && !src.empty() && !e.pointer().empty() && e.pointer()[0] == '/') {
+      // errors found after parsing (an unreadable file) still point into the spec text
+      std::ifstream in(src);
+      std::stringstream text;
+      text << in.rdbuf();
+      auto [line, col] = sweep::locate_pointer(text.str(), e.pointer());
+      if (line > 0) e.set_position(line, col);
+    }
     std::cerr << "sweepvol: error: " << e.describe(e.line() > 0 ? src : "") << "\n";
     return 2;
   } catch (const sweep::ComputeError& e) {

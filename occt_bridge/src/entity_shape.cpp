@@ -88,10 +88,10 @@ Handle(Geom_BSplineSurface) fit_surface(const EntitySpec& e, double tol, double*
         pts.SetValue(i + 1, j + 1, eval_xyz(e, uv));
       }
     GeomAPI_PointsToBSplineSurface fit;
-    fit.Interpolate(pts);
+    fit.Init(pts, Approx_IsoParametric, 3, 8, GeomAbs_C2, 0.1 * tol);
     if (!fit.IsDone()) continue;
     Handle(Geom_BSplineSurface) s = fit.Surface();
-    // Interpolation is uniform in the index; map the spec parameters onto the knot range.
+    // The parametrization is uniform in the index: map the spec parameters onto the knot range.
     double a0, a1, b0, b1;
     s->Bounds(a0, a1, b0, b1);
     double e_max = 0;

@@ -257,7 +257,12 @@ std::vector<TopoDS_Face> sweep_curve(const Handle(Geom_Curve)& c, double first, 
       r.SetRotation(axis, T * k / pieces);
       TopoDS_Shape ek = BRepBuilderAPI_Transform(e, r, true).Shape();
       BRepPrimAPI_MakeRevol mk(ek, axis, T / pieces);
-      if (!mk.IsDone()) throw ComputeError("could not revolve a curve");
+      if (!mk.IsDone()) {
+        gp_Pnt a = c->Value(first), b = c->Value(last);
+        throw ComputeError("could not revolve a " + std::string(c->DynamicType()->Name()) + " from (" +
+                           std::to_string(a.X()) + ", " + std::to_string(a.Y()) + ", " + std::to_string(a.Z()) + ") to (" +
+                           std::to_string(b.X()) + ", " + std::to_string(b.Y()) + ", " + std::to_string(b.Z()) + ")");
+      }
       faces_of(mk.Shape());
     }
     return out;

@@ -163,6 +163,308 @@ struct Candidates {
   int varieties = 0;
 };
 
+/// Accumulates seconds per step over stages.
+struct Seconds {
+  nlohmann::json& j;
+  double& operator[](const char* key) {
+    if (!j.contains(key)) j[key] = 0.0;
+    return *j[key].get_ptr<double*>();
+  }
+};
+
+/// The trajectory of a point under one joint as an edge (the sweep of a point).
+TopoDS_Shape point_sweep(const TopoDS_Shape& body, const ScrewJoint& j, double T, double tol, double size) {
+  TopoDS_Compound comp;
+  BRep_Builder bb;
+  bb.MakeCompound(comp);
+  int n = 0;
+  for (TopExp_Explorer ex(body, TopAbs_VERTEX); ex.More(); ex.Next()) {
+    Eigen::Vector3d x = to_eigen(BRep_Tool::Pnt(TopoDS::Vertex(ex.Current())));
+    if (j.type == JointType::Revolute) {
+      Eigen::Vector3d foot = j.point + j.direction * j.direction.dot(x - j.point);
+      double r = (x - foot).norm();
+      if (r < 1e-12 * size) continue;
+      gp_Ax2 ax(to_pnt(foot), gp_Dir(to_vec(j.direction)), gp_Dir(to_vec((x - foot) / r)));
+      Handle(Geom_Circle) c = new Geom_Circle(ax, r);
+      bb.Add(comp, BRepBuilderAPI_MakeEdge(c, 0.0, T).Edge());
+    } else if (j.type == JointType::Prismatic) {
+      bb.Add(comp, BRepBuilderAPI_MakeEdge(to_pnt(x), to_pnt(x + T * j.direction)).Edge());
+    } else {
+      const int m = std::max(16, int(std::ceil(T / (M_PI / 32))));
+      TColgp_Array1OfPnt pts(1, m + 1);
+      for (int k = 0; k <= m; ++k) pts.SetValue(k + 1, to_pnt(j.transform(T * k / m) * x));
+      GeomAPI_PointsToBSpline fit(pts, 3, 8, GeomAbs_C2, tol);
+      Handle(Geom_Curve) c(fit.Curve().get());
+      bb.Add(comp, BRepBuilderAPI_MakeEdge(c).Edge());
+    }
+    ++n;
+  }
+  if (n == 0) throw ComputeError("the point lies on the joint axis: its sweep is a point");
+  return comp;
+}
+
+/// The surface swept by the edges of a curve (a compound of faces).
+TopoDS_Shape curve_sweep(const TopoDS_Shape& body, const ScrewJoint& j, double T, double tol, double fit_tol,
+                         double* fit_err) {
+  TopoDS_Compound comp;
+  BRep_Builder bb;
+  bb.MakeCompound(comp);
+  int n = 0;
+  TopTools_IndexedMapOfShape edges;
+  TopExp::MapShapes(body, TopAbs_EDGE, edges);
+  for (int k = 1; k <= edges.Extent(); ++k) {
+    TopoDS_Edge e = TopoDS::Edge(edges(k));
+    if (BRep_Tool::Degenerated(e)) continue;
+    double f, l;
+    Handle(Geom_Curve) c = BRep_Tool::Curve(e, f, l);
+    if (c.IsNull()) continue;
+    c = canonical_curve(c, f, l, fit_tol);
+    for (const auto& face : sweep_curve(c, f, l, j, T, tol, fit_err)) {
+      bb.Add(comp, face);
+      ++n;
+    }
+  }
+  if (n == 0) throw ComputeError("the curve slides along itself: its sweep is a curve");
+  return comp;
+}
+
+/// One stage: the solid swept by `body` (a solid, or faces when dim == 2) under joint j for
+/// q in [0, T]. `sd`, when given, is the entity's signed distance and `sd_motion` the motion that
+/// carries the entity to this stage's swept set (for the certified membership test).
+TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j, double T, const SignedDistance* sd,
+                         const Motion& sd_motion, double esize, double size, double tol, double fit_tol,
+                         double& fit_err, Report& rep) {
+  Seconds sec{rep.seconds};
+  auto stage_fail = [](const std::string& m) -> TopoDS_Shape { throw ComputeError(m); };
+  const bool full_turn = j.type == JointType::Revolute && T >= 2 * M_PI - 1e-12;
+  // Candidate varieties.
+  const auto t_cand = Clock::now();
+  Candidates cand;
+  cand.varieties += 2;
+  TopTools_IndexedMapOfShape edges, faces;
+  TopExp::MapShapes(body, TopAbs_EDGE, edges);
+  TopExp::MapShapes(body, TopAbs_FACE, faces);
+  auto is_seam = [&](const TopoDS_Edge& e) {
+    for (int k = 1; k <= faces.Extent(); ++k)
+      if (BRep_Tool::IsClosed(e, TopoDS::Face(faces(k)))) return true;
+    return false;
+  };
+  for (int k = 1; k <= edges.Extent(); ++k) {
+    TopoDS_Edge e = TopoDS::Edge(edges(k));
+    if (BRep_Tool::Degenerated(e) || is_seam(e)) continue;
+    double f, l;
+    Handle(Geom_Curve) c = BRep_Tool::Curve(e, f, l);
+    if (c.IsNull()) continue;
+    {  // collapsed edges (poles of parametric surfaces) sweep nothing
+      double spread = 0;
+      gp_Pnt p0 = c->Value(f);
+      for (int k = 1; k <= 8; ++k) spread = std::max(spread, p0.Distance(c->Value(f + (l - f) * k / 8.0)));
+      if (spread < 1e-9 * esize) continue;
+    }
+    c = canonical_curve(c, f, l, std::max(fit_tol, 1e-10 * esize));
+    auto sw = sweep_curve(c, f, l, j, T, tol, &fit_err);
+    if (!sw.empty()) ++cand.varieties;
+    cand.faces.insert(cand.faces.end(), sw.begin(), sw.end());
+  }
+  // Grazing curves: their sweeps are candidates, and they split the entity's faces into pieces
+  // where n . v keeps one sign (each piece is then wholly inside the swept set or partly on its
+  // boundary, which lets the pruning below decide piece by piece).
+  std::vector<TopoDS_Face> pieces;
+  for (int k = 1; k <= faces.Extent(); ++k) {
+    const TopoDS_Face& face = TopoDS::Face(faces(k));
+    TopTools_ListOfShape tools;
+    for (const auto& g : grazing_curves(face, j, fit_tol, esize)) {
+      double f = g.first, l = g.last;
+      Handle(Geom_Curve) cc = canonical_curve(g.curve, f, l, fit_tol);
+      auto sw = sweep_curve(cc, f, l, j, T, tol, &fit_err);
+      if (!sw.empty()) ++cand.varieties;
+      cand.faces.insert(cand.faces.end(), sw.begin(), sw.end());
+      tools.Append(BRepBuilderAPI_MakeEdge(cc, f, l).Edge());
+    }
+    bool split = false;
+    if (!tools.IsEmpty()) {
+      BRepAlgoAPI_Splitter splitter;
+      TopTools_ListOfShape args;
+      args.Append(face);
+      splitter.SetArguments(args);
+      splitter.SetTools(tools);
+      splitter.SetRunParallel(false);
+      splitter.SetFuzzyValue(1e-9 * esize);
+      splitter.Build();
+      if (splitter.IsDone() && !splitter.HasErrors()) {
+        for (TopExp_Explorer ex(splitter.Shape(), TopAbs_FACE); ex.More(); ex.Next())
+          pieces.push_back(TopoDS::Face(ex.Current()));
+        split = true;
+      }
+    }
+    if (!split) pieces.push_back(face);
+  }
+  for (const auto& f : pieces) {
+    cand.faces.push_back(f);
+    if (!full_turn) cand.faces.push_back(TopoDS::Face(moved(f, j.transform(T))));
+  }
+  rep.varieties += cand.varieties;
+  sec["varieties"] += since(t_cand);
+
+  // Point membership: the certified analytic test for primitive solids, else the trajectory test.
+  const bool solid_entity = dim == 3;
+  auto member = [&](const Eigen::Vector3d& x) {
+    if (sd) return in_swept_set(*sd, sd_motion, x, 1e-9 * size);
+    return swept_by_trajectory(body, solid_entity, j, T, x, 1e-9 * size);
+  };
+
+  // Drop candidates that lie inside the swept set: sample points of the face's interior with
+  // both sides in the set. Keeping a face is always safe; dropping internal ones spares the
+  // arrangement needless (often tangential) intersections.
+  {
+    const auto t_prune = Clock::now();
+    // A quick test with a comfortable offset; a sample that fails it (near the boundary, or at a
+    // point where an internal face touches the boundary) is tested again with the trajectory
+    // test at an offset just above the geometric error.
+    const double delta = 1e-4 * size, fine = std::max(1e-7 * size, 20 * fit_err);
+    auto traj = [&](const Eigen::Vector3d& x) { return swept_by_trajectory(body, solid_entity, j, T, x, 1e-10 * size); };
+    std::vector<TopoDS_Face> keep;
+    for (const auto& f : cand.faces) {
+      double u0, u1, v0, v1;
+      BRepTools::UVBounds(f, u0, u1, v0, v1);
+      BRepTopAdaptor_FClass2d fc(f, 1e-9);
+      BRepAdaptor_Surface S(f);
+      const int n = 7;
+      int tested = 0;
+      bool internal = true;
+      for (int a = 0; a < n && internal; ++a)
+        for (int b = 0; b < n && internal; ++b) {
+          gp_Pnt2d uv(u0 + (u1 - u0) * (a + 0.5) / n, v0 + (v1 - v0) * (b + 0.5) / n);
+          if (fc.Perform(uv) != TopAbs_IN) continue;
+          BRepLProp_SLProps props(S, uv.X(), uv.Y(), 1, 1e-9);
+          if (!props.IsNormalDefined()) continue;
+          Eigen::Vector3d p = to_eigen(props.Value()), nn = to_eigen(gp_Vec(props.Normal()));
+          ++tested;
+          if ((!member(p + delta * nn) || !member(p - delta * nn)) && (!traj(p + fine * nn) || !traj(p - fine * nn)))
+            internal = false;
+        }
+      if (!internal || tested < 4) keep.push_back(f);
+    }
+    sec["pruning"] += since(t_prune);
+    cand.faces.swap(keep);
+  }
+
+
+  // Drop duplicate candidates (the same face reached twice, e.g. by symmetric edges): the
+  // general fuse handles coincident analytic faces, but not coincident general ones.
+  {
+    std::vector<TopoDS_Face> uniq;
+    std::vector<std::pair<double, Bnd_Box>> props;
+    auto lies_on = [&](const TopoDS_Face& a, const TopoDS_Face& b) {
+      double u0, u1, v0, v1;
+      BRepTools::UVBounds(a, u0, u1, v0, v1);
+      BRepAdaptor_Surface SA(a);
+      BRepTopAdaptor_FClass2d fa(a, 1e-9);
+      Handle(Geom_Surface) gb = BRep_Tool::Surface(b);
+      BRepTopAdaptor_FClass2d fb(b, 1e-9);
+      int n = 0;
+      for (int i = 0; i < 5; ++i)
+        for (int k = 0; k < 5; ++k) {
+          gp_Pnt2d uv(u0 + (u1 - u0) * (i + 0.5) / 5, v0 + (v1 - v0) * (k + 0.5) / 5);
+          if (fa.Perform(uv) != TopAbs_IN) continue;
+          gp_Pnt p = SA.Value(uv.X(), uv.Y());
+          GeomAPI_ProjectPointOnSurf proj(p, gb);
+          if (proj.NbPoints() == 0 || proj.LowerDistance() > 1e-7 * size) return false;
+          double pu, pv;
+          proj.LowerDistanceParameters(pu, pv);
+          if (fb.Perform(gp_Pnt2d(pu, pv)) == TopAbs_OUT) return false;
+          ++n;
+        }
+      return n >= 3;
+    };
+    for (const auto& f : cand.faces) {
+      GProp_GProps g;
+      BRepGProp::SurfaceProperties(f, g);
+      Bnd_Box b;
+      BRepBndLib::Add(f, b);
+      bool dup = false;
+      for (std::size_t k = 0; k < uniq.size() && !dup; ++k) {
+        if (std::abs(props[k].first - g.Mass()) > 1e-6 * std::max(g.Mass(), 1e-300)) continue;
+        if (props[k].second.IsOut(b) || b.IsOut(props[k].second)) continue;
+        dup = lies_on(f, uniq[k]) && lies_on(uniq[k], f);
+      }
+      if (!dup) {
+        uniq.push_back(f);
+        props.push_back({g.Mass(), b});
+      }
+    }
+    cand.faces.swap(uniq);
+  }
+
+  // Arrangement of all candidate faces.
+  const auto t_arr = Clock::now();
+  BOPAlgo_MakerVolume mv;
+  TopTools_ListOfShape args;
+  for (const auto& f : cand.faces) args.Append(f);
+  mv.SetArguments(args);
+  mv.SetRunParallel(false);
+  mv.SetFuzzyValue(std::max(1e-7 * size, 10 * fit_err));
+  mv.SetNonDestructive(true);
+  mv.Perform();
+  if (const char* dump = std::getenv("SWEEP_DUMP_CANDIDATES")) {  // diagnostics: the arrangement's input
+    TopoDS_Compound comp;
+    BRep_Builder bb;
+    bb.MakeCompound(comp);
+    for (const auto& f : cand.faces) bb.Add(comp, f);
+    BRepTools::Write(comp, dump);
+  }
+  if (mv.HasErrors()) {
+    std::ostringstream why;
+    mv.DumpErrors(why);
+    return stage_fail("the arrangement of the candidate faces failed: " + why.str());
+  }
+  sec["arrangement"] += since(t_arr);
+
+  // Classify cells.
+  const auto t_cls = Clock::now();
+  std::vector<TopoDS_Solid> kept;
+  int ncells = 0;
+  for (TopExp_Explorer ex(mv.Shape(), TopAbs_SOLID); ex.More(); ex.Next()) {
+    ++ncells;
+    TopoDS_Solid cell = TopoDS::Solid(ex.Current());
+    Eigen::Vector3d p;
+    if (!interior_point(cell, size, &p)) {
+      GProp_GProps g;
+      BRepGProp::VolumeProperties(cell, g);
+      if (std::abs(g.Mass()) < 1e-9 * size * size * size) continue;  // a sliver of nothing
+      return stage_fail("no interior point found for a cell of volume " + std::to_string(g.Mass()));
+    }
+    if (member(p)) kept.push_back(cell);
+  }
+  rep.cells += ncells;
+  sec["classification"] += since(t_cls);
+  if (kept.empty()) return stage_fail("no cell of the arrangement is in the swept set");
+
+  // Union of the kept cells (they share faces exactly), then merge same-domain faces.
+  const auto t_build = Clock::now();
+  TopoDS_Shape result;
+  if (kept.size() == 1) {
+    result = kept[0];
+  } else {
+    BRepAlgoAPI_Fuse fuse;
+    TopTools_ListOfShape a, t;
+    a.Append(kept[0]);
+    for (std::size_t k = 1; k < kept.size(); ++k) t.Append(kept[k]);
+    fuse.SetArguments(a);
+    fuse.SetTools(t);
+    fuse.SetRunParallel(false);
+    fuse.SetGlue(BOPAlgo_GlueShift);
+    fuse.Build();
+    if (!fuse.IsDone() || fuse.HasErrors()) return stage_fail("the union of the swept cells failed");
+    result = fuse.Shape();
+  }
+  ShapeUpgrade_UnifySameDomain unify(result, true, true, true);
+  unify.Build();
+  result = unify.Shape();
+  sec["build"] += since(t_build);
+  return result;
+}
+
 }  // namespace
 
 RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
@@ -177,24 +479,24 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
     rep.seconds_total = since(t_start);
     return res;
   };
-  if (motion.dof() != 1)
-    return fail("motions of " + std::to_string(motion.dof()) + " joints are not supported yet (one joint only)");
+  if (motion.dof() == 0) return fail("the motion has no joint");
   try {
-    ScrewJoint j = motion.joints[0];
-    double T = j.hi - j.lo;
-    if (j.type == JointType::Revolute && T >= 2 * M_PI) T = 2 * M_PI;  // a full turn covers everything
-    const Eigen::Isometry3d start = j.transform(j.lo) * motion.home;
-
-    // Size and tolerance from the entity.
+    // Size and tolerance from the entity and the reach of the motion.
     double fit_err = 0;
     TopoDS_Shape raw = entity_shape(spec.entity, 1e-9, &fit_err);
-    Bnd_Box eb;
-    BRepBndLib::Add(raw, eb);
-    double xmin, ymin, zmin, xmax, ymax, zmax;
-    eb.Get(xmin, ymin, zmin, xmax, ymax, zmax);
-    const double esize = std::max({xmax - xmin, ymax - ymin, zmax - zmin, 1e-300});
-    const double size = esize + (j.type == JointType::Prismatic ? T : 0) +
-                        (j.is_rotation() ? std::abs(j.pitch) * T : 0);
+    auto extent = [](const TopoDS_Shape& s) {
+      Bnd_Box b;
+      BRepBndLib::Add(s, b);
+      double x0, y0, z0, x1, y1, z1;
+      b.Get(x0, y0, z0, x1, y1, z1);
+      return std::max({x1 - x0, y1 - y0, z1 - z0, 1e-300});
+    };
+    double size = extent(raw);
+    for (const auto& j : motion.joints) {
+      const double span = std::min(j.hi - j.lo, j.type == JointType::Revolute ? 2 * M_PI : 1e300);
+      if (j.type == JointType::Prismatic) size += span;
+      else size += std::abs(j.pitch) * span;
+    }
     rep.tol_requested = spec.tolerance > 0 ? spec.tolerance : 1e-6 * size;
     const double tol = rep.tol_requested;
     const double fit_tol = 0.01 * tol;
@@ -202,242 +504,43 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
       fit_err = 0;
       raw = entity_shape(spec.entity, fit_tol, &fit_err);
     }
-    TopoDS_Shape body = moved(raw, start);
+    TopoDS_Shape shape = moved(raw, motion.home);
     rep.seconds["entity"] = since(t_start);
-
-    // Candidate varieties.
-    const auto t_cand = Clock::now();
-    Candidates cand;
-    const bool full_turn = j.type == JointType::Revolute && T >= 2 * M_PI - 1e-12;
-    if (rep.dimension >= 2) cand.varieties += 2;
-    TopTools_IndexedMapOfShape edges, faces;
-    TopExp::MapShapes(body, TopAbs_EDGE, edges);
-    TopExp::MapShapes(body, TopAbs_FACE, faces);
-    auto is_seam = [&](const TopoDS_Edge& e) {
-      for (int k = 1; k <= faces.Extent(); ++k)
-        if (BRep_Tool::IsClosed(e, TopoDS::Face(faces(k)))) return true;
-      return false;
-    };
-    for (int k = 1; k <= edges.Extent(); ++k) {
-      TopoDS_Edge e = TopoDS::Edge(edges(k));
-      if (BRep_Tool::Degenerated(e) || is_seam(e)) continue;
-      double f, l;
-      Handle(Geom_Curve) c = BRep_Tool::Curve(e, f, l);
-      if (c.IsNull()) continue;
-      {  // collapsed edges (poles of parametric surfaces) sweep nothing
-        double spread = 0;
-        gp_Pnt p0 = c->Value(f);
-        for (int k = 1; k <= 8; ++k) spread = std::max(spread, p0.Distance(c->Value(f + (l - f) * k / 8.0)));
-        if (spread < 1e-9 * esize) continue;
-      }
-      c = canonical_curve(c, f, l, std::max(fit_tol, 1e-10 * esize));
-      auto sw = sweep_curve(c, f, l, j, T, tol, &fit_err);
-      if (!sw.empty()) ++cand.varieties;
-      cand.faces.insert(cand.faces.end(), sw.begin(), sw.end());
-    }
-    // Grazing curves: their sweeps are candidates, and they split the entity's faces into pieces
-    // where n . v keeps one sign (each piece is then wholly inside the swept set or partly on its
-    // boundary, which lets the pruning below decide piece by piece).
-    std::vector<TopoDS_Face> pieces;
-    for (int k = 1; k <= faces.Extent(); ++k) {
-      const TopoDS_Face& face = TopoDS::Face(faces(k));
-      TopTools_ListOfShape tools;
-      for (const auto& g : grazing_curves(face, j, fit_tol, esize)) {
-        double f = g.first, l = g.last;
-        Handle(Geom_Curve) cc = canonical_curve(g.curve, f, l, fit_tol);
-        auto sw = sweep_curve(cc, f, l, j, T, tol, &fit_err);
-        if (!sw.empty()) ++cand.varieties;
-        cand.faces.insert(cand.faces.end(), sw.begin(), sw.end());
-        tools.Append(BRepBuilderAPI_MakeEdge(cc, f, l).Edge());
-      }
-      bool split = false;
-      if (!tools.IsEmpty()) {
-        BRepAlgoAPI_Splitter splitter;
-        TopTools_ListOfShape args;
-        args.Append(face);
-        splitter.SetArguments(args);
-        splitter.SetTools(tools);
-        splitter.SetRunParallel(false);
-        splitter.SetFuzzyValue(1e-9 * esize);
-        splitter.Build();
-        if (splitter.IsDone() && !splitter.HasErrors()) {
-          for (TopExp_Explorer ex(splitter.Shape(), TopAbs_FACE); ex.More(); ex.Next())
-            pieces.push_back(TopoDS::Face(ex.Current()));
-          split = true;
-        }
-      }
-      if (!split) pieces.push_back(face);
-    }
-    for (const auto& f : pieces) {
-      cand.faces.push_back(f);
-      if (!full_turn) cand.faces.push_back(TopoDS::Face(moved(f, j.transform(T))));
-    }
-    rep.varieties = cand.varieties;
-    rep.seconds["varieties"] = since(t_cand);
-
-    // Point membership: the certified analytic test for primitive solids, else the trajectory test.
-    const bool solid_entity = rep.dimension == 3;
-    Motion stage = motion;
-    stage.joints[0].hi = stage.joints[0].lo + T;
     std::unique_ptr<SignedDistance> sd = make_signed_distance(spec.entity);
-    auto member = [&](const Eigen::Vector3d& x) {
-      if (sd) return in_swept_set(*sd, stage, x, 1e-9 * size);
-      return swept_by_trajectory(body, solid_entity, j, T, x, 1e-9 * size);
-    };
 
-    // Drop candidates that lie inside the swept set: sample points of the face's interior with
-    // both sides in the set. Keeping a face is always safe; dropping internal ones spares the
-    // arrangement needless (often tangential) intersections.
-    if (rep.dimension == 3) {
-      const auto t_prune = Clock::now();
-      // A quick test with a comfortable offset; a sample that fails it (near the boundary, or at a
-      // point where an internal face touches the boundary) is tested again with the trajectory
-      // test at an offset just above the geometric error.
-      const double delta = 1e-4 * size, fine = std::max(1e-7 * size, 20 * fit_err);
-      auto traj = [&](const Eigen::Vector3d& x) { return swept_by_trajectory(body, solid_entity, j, T, x, 1e-10 * size); };
-      std::vector<TopoDS_Face> keep;
-      for (const auto& f : cand.faces) {
-        double u0, u1, v0, v1;
-        BRepTools::UVBounds(f, u0, u1, v0, v1);
-        BRepTopAdaptor_FClass2d fc(f, 1e-9);
-        BRepAdaptor_Surface S(f);
-        const int n = 7;
-        int tested = 0;
-        bool internal = true;
-        for (int a = 0; a < n && internal; ++a)
-          for (int b = 0; b < n && internal; ++b) {
-            gp_Pnt2d uv(u0 + (u1 - u0) * (a + 0.5) / n, v0 + (v1 - v0) * (b + 0.5) / n);
-            if (fc.Perform(uv) != TopAbs_IN) continue;
-            BRepLProp_SLProps props(S, uv.X(), uv.Y(), 1, 1e-9);
-            if (!props.IsNormalDefined()) continue;
-            Eigen::Vector3d p = to_eigen(props.Value()), nn = to_eigen(gp_Vec(props.Normal()));
-            ++tested;
-            if ((!member(p + delta * nn) || !member(p - delta * nn)) && (!traj(p + fine * nn) || !traj(p - fine * nn)))
-              internal = false;
-          }
-        if (!internal || tested < 4) keep.push_back(f);
-      }
-      rep.seconds["pruning"] = since(t_prune);
-      cand.faces.swap(keep);
-    }
-
-    if (rep.dimension < 2) {
-      return fail("sweeps of points and curves (results of dimension " + std::to_string(rep.dimension + 1) +
-                  ") are not written as solids yet");
-    }
-
-    // Drop duplicate candidates (the same face reached twice, e.g. by symmetric edges): the
-    // general fuse handles coincident analytic faces, but not coincident general ones.
-    {
-      std::vector<TopoDS_Face> uniq;
-      std::vector<std::pair<double, Bnd_Box>> props;
-      auto lies_on = [&](const TopoDS_Face& a, const TopoDS_Face& b) {
-        double u0, u1, v0, v1;
-        BRepTools::UVBounds(a, u0, u1, v0, v1);
-        BRepAdaptor_Surface SA(a);
-        BRepTopAdaptor_FClass2d fa(a, 1e-9);
-        Handle(Geom_Surface) gb = BRep_Tool::Surface(b);
-        BRepTopAdaptor_FClass2d fb(b, 1e-9);
-        int n = 0;
-        for (int i = 0; i < 5; ++i)
-          for (int k = 0; k < 5; ++k) {
-            gp_Pnt2d uv(u0 + (u1 - u0) * (i + 0.5) / 5, v0 + (v1 - v0) * (k + 0.5) / 5);
-            if (fa.Perform(uv) != TopAbs_IN) continue;
-            gp_Pnt p = SA.Value(uv.X(), uv.Y());
-            GeomAPI_ProjectPointOnSurf proj(p, gb);
-            if (proj.NbPoints() == 0 || proj.LowerDistance() > 1e-7 * size) return false;
-            double pu, pv;
-            proj.LowerDistanceParameters(pu, pv);
-            if (fb.Perform(gp_Pnt2d(pu, pv)) == TopAbs_OUT) return false;
-            ++n;
-          }
-        return n >= 3;
-      };
-      for (const auto& f : cand.faces) {
-        GProp_GProps g;
-        BRepGProp::SurfaceProperties(f, g);
-        Bnd_Box b;
-        BRepBndLib::Add(f, b);
-        bool dup = false;
-        for (std::size_t k = 0; k < uniq.size() && !dup; ++k) {
-          if (std::abs(props[k].first - g.Mass()) > 1e-6 * std::max(g.Mass(), 1e-300)) continue;
-          if (props[k].second.IsOut(b) || b.IsOut(props[k].second)) continue;
-          dup = lies_on(f, uniq[k]) && lies_on(uniq[k], f);
-        }
-        if (!dup) {
-          uniq.push_back(f);
-          props.push_back({g.Mass(), b});
+    // Stages, innermost joint first: each sweeps the previous stage's set.
+    int dim = rep.dimension;
+    const int n = int(motion.dof());
+    for (int i = n - 1; i >= 0; --i) {
+      ScrewJoint j = motion.joints[i];
+      double T = j.hi - j.lo;
+      if (j.type == JointType::Revolute && T >= 2 * M_PI) T = 2 * M_PI;  // a full turn covers everything
+      TopoDS_Shape body = moved(shape, j.transform(j.lo));
+      if (dim == 0) {
+        shape = point_sweep(body, j, T, fit_tol, size);
+      } else if (dim == 1) {
+        shape = curve_sweep(body, j, T, tol, fit_tol, &fit_err);
+      } else {
+        Motion sd_motion;
+        sd_motion.home = motion.home;
+        sd_motion.joints = {j};
+        sd_motion.joints[0].hi = j.lo + T;
+        const bool use_sd = sd && i == n - 1 && dim == 3;
+        shape = solid_sweep(body, dim, j, T, use_sd ? sd.get() : nullptr, sd_motion, extent(body), size, tol, fit_tol,
+                            fit_err, rep);
+        // a single solid travels on as itself (classifiers want a solid, not a compound of one)
+        TopExp_Explorer sx(shape, TopAbs_SOLID);
+        if (sx.More()) {
+          TopoDS_Shape first = sx.Current();
+          sx.Next();
+          if (!sx.More()) shape = first;
         }
       }
-      cand.faces.swap(uniq);
+      dim = std::min(3, dim + 1);
     }
-
-    // Arrangement of all candidate faces.
-    const auto t_arr = Clock::now();
-    BOPAlgo_MakerVolume mv;
-    TopTools_ListOfShape args;
-    for (const auto& f : cand.faces) args.Append(f);
-    mv.SetArguments(args);
-    mv.SetRunParallel(false);
-    mv.SetFuzzyValue(std::max(1e-7 * size, 10 * fit_err));
-    mv.SetNonDestructive(true);
-    mv.Perform();
-    if (const char* dump = std::getenv("SWEEP_DUMP_CANDIDATES")) {  // diagnostics: the arrangement's input
-      TopoDS_Compound comp;
-      BRep_Builder bb;
-      bb.MakeCompound(comp);
-      for (const auto& f : cand.faces) bb.Add(comp, f);
-      BRepTools::Write(comp, dump);
-    }
-    if (mv.HasErrors()) {
-      std::ostringstream why;
-      mv.DumpErrors(why);
-      return fail("the arrangement of the candidate faces failed: " + why.str());
-    }
-    rep.seconds["arrangement"] = since(t_arr);
-
-    // Classify cells.
-    const auto t_cls = Clock::now();
-    std::vector<TopoDS_Solid> kept;
-    int ncells = 0;
-    for (TopExp_Explorer ex(mv.Shape(), TopAbs_SOLID); ex.More(); ex.Next()) {
-      ++ncells;
-      TopoDS_Solid cell = TopoDS::Solid(ex.Current());
-      Eigen::Vector3d p;
-      if (!interior_point(cell, size, &p)) {
-        GProp_GProps g;
-        BRepGProp::VolumeProperties(cell, g);
-        if (std::abs(g.Mass()) < 1e-9 * size * size * size) continue;  // a sliver of nothing
-        return fail("no interior point found for a cell of volume " + std::to_string(g.Mass()));
-      }
-      if (member(p)) kept.push_back(cell);
-    }
-    rep.cells = ncells;
-    rep.seconds["classification"] = since(t_cls);
-    if (kept.empty()) return fail("no cell of the arrangement is in the swept set");
-
-    // Union of the kept cells (they share faces exactly), then merge same-domain faces.
-    const auto t_build = Clock::now();
-    TopoDS_Shape result;
-    if (kept.size() == 1) {
-      result = kept[0];
-    } else {
-      BRepAlgoAPI_Fuse fuse;
-      TopTools_ListOfShape a, t;
-      a.Append(kept[0]);
-      for (std::size_t k = 1; k < kept.size(); ++k) t.Append(kept[k]);
-      fuse.SetArguments(a);
-      fuse.SetTools(t);
-      fuse.SetRunParallel(false);
-      fuse.SetGlue(BOPAlgo_GlueShift);
-      fuse.Build();
-      if (!fuse.IsDone() || fuse.HasErrors()) return fail("the union of the swept cells failed");
-      result = fuse.Shape();
-    }
-    ShapeUpgrade_UnifySameDomain unify(result, true, true, true);
-    unify.Build();
-    result = unify.Shape();
-    rep.seconds["build"] = since(t_build);
+    rep.dimension = dim;
+    TopoDS_Shape result = shape;
+    if (dim < 3) return fail("the swept set has dimension " + std::to_string(dim) + ": it has no volume");
 
     // Validation.
     const auto t_val = Clock::now();
@@ -472,8 +575,24 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
                               Eigen::Vector3d(rep.bbox_max[0], rep.bbox_max[1], rep.bbox_max[2]));
       box.extend(box.min() - Eigen::Vector3d::Constant(0.01 * size));
       box.extend(box.max() + Eigen::Vector3d::Constant(0.01 * size));
-      const std::size_t samples = sd ? opt.mc_samples : std::min<std::size_t>(opt.mc_samples, 20000);
-      MonteCarloResult mc = monte_carlo_volume(member, box, samples, opt.mc_seed);
+      MonteCarloResult mc;
+      if (sd) {
+        Motion m = motion;
+        for (auto& jj : m.joints)
+          if (jj.type == JointType::Revolute && jj.hi - jj.lo > 2 * M_PI) jj.hi = jj.lo + 2 * M_PI;
+        const std::size_t samples = n == 1 ? opt.mc_samples : std::max<std::size_t>(opt.mc_samples / 8, 20000);
+        mc = monte_carlo_volume([&](const Eigen::Vector3d& x) { return in_swept_set(*sd, m, x, 1e-9 * size); }, box,
+                                samples, opt.mc_seed);
+      } else if (n == 1) {
+        const ScrewJoint& j = motion.joints[0];
+        const double T = std::min(j.hi - j.lo, j.type == JointType::Revolute ? 2 * M_PI : 1e300);
+        TopoDS_Shape body = moved(moved(raw, motion.home), j.transform(j.lo));
+        mc = monte_carlo_volume(
+            [&](const Eigen::Vector3d& x) { return swept_by_trajectory(body, rep.dimension == 3 && spec.entity.dimension() == 3, j, T, x, 1e-9 * size); },
+            box, std::min<std::size_t>(opt.mc_samples, 20000), opt.mc_seed);
+      } else {
+        throw ComputeError("--verify needs a primitive solid entity for motions of several joints");
+      }
       rep.has_mc = true;
       rep.volume_mc = mc.volume;
       rep.volume_mc_stderr = mc.stderr_;
