@@ -79,7 +79,8 @@ double max_diff(const Eigen::Isometry3d& A, const Eigen::Isometry3d& B) {
   return (A.matrix() - B.matrix()).cwiseAbs().maxCoeff();
 }
 
-std::string shared_case(const std::string& name) { return std::string(SWEEP_SHARED_DIR) + "/cases/" + name; }
+// The shared contract cases, as copied into examples/cases.
+std::string shared_case(const std::string& name) { return std::string(SWEEP_SOURCE_DIR) + "/examples/cases/" + name; }
 
 }  // namespace
 

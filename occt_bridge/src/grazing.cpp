@@ -47,7 +47,16 @@ struct Field {
     S.D1(p.x(), p.y(), P, Du, Dv);
     gp_Vec N = Du.Crossed(Dv);
     double n = N.Magnitude();
-    if (n < 1e-14) return 0.0;
+    if (n < 1e-12 * (Du.Magnitude() + Dv.Magnitude() + 1e-300) || n < 1e-300) {
+      // a pole of the parametrization: take the normal's limit from just inside the domain
+      const double eu = 1e-7 * (u1 - u0) * (p.x() < 0.5 * (u0 + u1) ? 1 : -1);
+      const double ev = 1e-7 * (v1 - v0) * (p.y() < 0.5 * (v0 + v1) ? 1 : -1);
+      gp_Pnt Q;
+      S.D1(p.x() + eu, p.y() + ev, Q, Du, Dv);
+      N = Du.Crossed(Dv);
+      n = N.Magnitude();
+      if (n < 1e-300) return 0.0;
+    }
     return N.Dot(to_vec(joint.velocity(to_eigen(P)))) / n;
   }
   gp_Pnt point(const UV& p) const { return S.Value(p.x(), p.y()); }
@@ -301,7 +310,19 @@ std::vector<GrazingCurve> grazing_curves(const TopoDS_Face& face, const ScrewJoi
     bool all_on = true;
     for (const auto& p : chain)
       if (state(p) != TopAbs_ON) { all_on = false; break; }
-    if (all_on) continue;
+    if (all_on) {
+      // On a seam the face lies on both sides: the chain is interior after all.
+      const UV m = chain[chain.size() / 2];
+      const double eu = 1e-6 * (ub - ua), ev = 1e-6 * (vb - va);
+      auto inside = [&](UV q) {
+        if (F.uper && q.x() < F.u0) q.x() += F.uP;
+        if (F.vper && q.y() < F.v0) q.y() += F.vP;
+        return state(q) == TopAbs_IN;
+      };
+      const bool seam = (inside(m + UV(eu, 0)) && inside(m - UV(eu, 0))) ||
+                        (inside(m + UV(0, ev)) && inside(m - UV(0, ev)));
+      if (!seam) continue;
+    }
     // split into runs inside the face
     std::vector<std::vector<gp_Pnt>> runs;
     std::vector<UV> run;

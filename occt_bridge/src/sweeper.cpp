@@ -7,6 +7,8 @@
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_Transform.hxx>
 #include <BRepCheck_Analyzer.hxx>
+#include <BRepLib.hxx>
+#include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
 #include <BRepClass3d_SolidClassifier.hxx>
 #include <BRepGProp.hxx>
 #include <BRepGProp_Face.hxx>
@@ -249,9 +251,24 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
       if (BRep_Tool::IsClosed(e, TopoDS::Face(faces(k)))) return true;
     return false;
   };
+  // Smooth (G1) edges between two faces need no sweep of their own: the grazing curves of the two
+  // faces meet across them.
+  TopoDS_Shape regular = body;
+  BRepLib::EncodeRegularity(regular, 1e-9);
+  TopTools_IndexedDataMapOfShapeListOfShape edge_faces;
+  TopExp::MapShapesAndAncestors(body, TopAbs_EDGE, TopAbs_FACE, edge_faces);
+  auto is_smooth = [&](const TopoDS_Edge& e) {
+    if (!edge_faces.Contains(e)) return false;
+    const TopTools_ListOfShape& fl = edge_faces.FindFromKey(e);
+    if (fl.Extent() != 2) return false;
+    const TopoDS_Face& f1 = TopoDS::Face(fl.First());
+    const TopoDS_Face& f2 = TopoDS::Face(fl.Last());
+    if (f1.IsSame(f2)) return false;
+    return BRep_Tool::HasContinuity(e, f1, f2) && BRep_Tool::Continuity(e, f1, f2) >= GeomAbs_G1;
+  };
   for (int k = 1; k <= edges.Extent(); ++k) {
     TopoDS_Edge e = TopoDS::Edge(edges(k));
-    if (BRep_Tool::Degenerated(e) || is_seam(e)) continue;
+    if (BRep_Tool::Degenerated(e) || is_seam(e) || is_smooth(e)) continue;
     double f, l;
     Handle(Geom_Curve) c = BRep_Tool::Curve(e, f, l);
     if (c.IsNull()) continue;
@@ -385,7 +402,14 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
       bool dup = false;
       for (std::size_t k = 0; k < uniq.size() && !dup; ++k) {
         if (std::abs(props[k].first - g.Mass()) > 1e-6 * std::max(g.Mass(), 1e-300)) continue;
-        if (props[k].second.IsOut(b) || b.IsOut(props[k].second)) continue;
+        {
+          double a[6], c[6];
+          props[k].second.Get(a[0], a[1], a[2], a[3], a[4], a[5]);
+          b.Get(c[0], c[1], c[2], c[3], c[4], c[5]);
+          bool same_box = true;
+          for (int m = 0; m < 6; ++m) same_box = same_box && std::abs(a[m] - c[m]) <= 1e-6 * size;
+          if (!same_box) continue;
+        }
         dup = lies_on(f, uniq[k]) && lies_on(uniq[k], f);
       }
       if (!dup) {
