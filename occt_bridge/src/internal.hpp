@@ -4,6 +4,7 @@
 #include <TopoDS_Edge.hxx>
 #include <TopoDS_Face.hxx>
 #include <TopoDS_Shape.hxx>
+#include <gp_Pln.hxx>
 #include <gp_Pnt.hxx>
 #include <gp_Trsf.hxx>
 #include <gp_Vec.hxx>
@@ -53,6 +54,14 @@ std::vector<TopoDS_Face> sweep_curve(const Handle(Geom_Curve)& c, double first, 
 /// Divergence-theorem volume (1/3) sum over faces of the integral of x . n, computed by Green's
 /// theorem in each face's parameter domain along its pcurves.
 double divergence_volume(const TopoDS_Shape& solid);
+
+/// True when the motion keeps a plane containing the curve (then written to `plane`): a plane
+/// perpendicular to a rotation axis, or one containing a translation direction.
+bool keeps_plane_of(const Handle(Geom_Curve)& c, double first, double last, const ScrewJoint& j, double size,
+                    gp_Pln* plane);
+/// The planar region swept by such a curve, as faces of that plane.
+std::vector<TopoDS_Face> planar_curve_sweep(const Handle(Geom_Curve)& c, double first, double last,
+                                            const ScrewJoint& j, double T, const gp_Pln& plane, double size);
 
 /// Keeps OCCT's translators from printing to stdout (stdout carries the report).
 void quiet_occt();

@@ -207,7 +207,7 @@ TopoDS_Shape point_sweep(const TopoDS_Shape& body, const ScrewJoint& j, double T
 
 /// The surface swept by the edges of a curve (a compound of faces).
 TopoDS_Shape curve_sweep(const TopoDS_Shape& body, const ScrewJoint& j, double T, double tol, double fit_tol,
-                         double* fit_err) {
+                         double size, double* fit_err) {
   TopoDS_Compound comp;
   BRep_Builder bb;
   bb.MakeCompound(comp);
@@ -221,7 +221,9 @@ TopoDS_Shape curve_sweep(const TopoDS_Shape& body, const ScrewJoint& j, double T
     Handle(Geom_Curve) c = BRep_Tool::Curve(e, f, l);
     if (c.IsNull()) continue;
     c = canonical_curve(c, f, l, fit_tol);
-    for (const auto& face : sweep_curve(c, f, l, j, T, tol, fit_err)) {
+    gp_Pln plane;
+    const bool planar = keeps_plane_of(c, f, l, j, size, &plane);
+    for (const auto& face : planar ? planar_curve_sweep(c, f, l, j, T, plane, size) : sweep_curve(c, f, l, j, T, tol, fit_err)) {
       bb.Add(comp, face);
       ++n;
     }
@@ -279,7 +281,9 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
       if (spread < 1e-9 * esize) continue;
     }
     c = canonical_curve(c, f, l, std::max(fit_tol, 1e-10 * esize));
-    auto sw = sweep_curve(c, f, l, j, T, tol, &fit_err);
+    gp_Pln plane;
+    const bool planar = !c->IsKind(STANDARD_TYPE(Geom_Line)) && keeps_plane_of(c, f, l, j, size, &plane);
+    auto sw = planar ? planar_curve_sweep(c, f, l, j, T, plane, size) : sweep_curve(c, f, l, j, T, tol, &fit_err);
     if (!sw.empty()) ++cand.varieties;
     cand.faces.insert(cand.faces.end(), sw.begin(), sw.end());
   }
@@ -543,7 +547,7 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
       if (dim == 0) {
         shape = point_sweep(body, j, T, fit_tol, size);
       } else if (dim == 1) {
-        shape = curve_sweep(body, j, T, tol, fit_tol, &fit_err);
+        shape = curve_sweep(body, j, T, tol, fit_tol, size, &fit_err);
       } else {
         Motion sd_motion;
         sd_motion.home = motion.home;
