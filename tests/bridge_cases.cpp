@@ -1,5 +1,6 @@
 // Every spec with an `_expected_volume` (shared cases and examples) is computed and checked:
-// status ok, valid, closed, volume within `_rel_tol` (default 1e-5) of the expected value.
+// status ok, valid, closed, volume within `_rel_tol` (default 1e-6) of the expected value, and the
+// STEP file written reads back to the same volume.
 #include <catch2/catch.hpp>
 
 #include "occt_bridge/sweeper.hpp"
@@ -22,7 +23,7 @@ void check_case(const std::string& path) {
   sweep::Spec spec = sweep::load_spec(path);
   REQUIRE(spec.json.contains("_expected_volume"));
   const double expected = spec.json["_expected_volume"].get<double>();
-  const double rel = spec.json.value("_rel_tol", 1e-5);
+  const double rel = spec.json.value("_rel_tol", 1e-6);
   auto r = sweep::occt::run_sweep(spec);
   CAPTURE(r.report.to_json().dump());
   if (known_unsupported(path) && r.report.status == "failed") {
@@ -34,6 +35,12 @@ void check_case(const std::string& path) {
   CHECK(r.report.closed);
   CHECK(r.report.volume_brep == Approx(expected).epsilon(rel));
   CHECK(r.report.volume_divergence == Approx(expected).epsilon(rel));
+  if (r.report.ok()) {  // the STEP file written reads back to the same volume
+    const std::string out = std::string(SWEEP_BINARY_DIR) + "/case_" +
+                            std::filesystem::path(path).stem().string() + ".step";
+    sweep::occt::write_shape(*r.shape, out, 1e-3);
+    CHECK(sweep::occt::file_volume(out) == Approx(r.report.volume_brep).epsilon(1e-6));
+  }
 }
 
 }  // namespace
