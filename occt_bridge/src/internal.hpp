@@ -51,6 +51,10 @@ std::vector<GrazingCurve> grazing_curves(const TopoDS_Face& face, const ScrewJoi
 std::vector<TopoDS_Face> sweep_curve(const Handle(Geom_Curve)& c, double first, double last,
                                      const ScrewJoint& joint, double T, double tol, double* fit_error);
 
+/// Parameters where the curve's coordinate along the joint axis turns (empty when it never
+/// does, or when the curve lies in a plane perpendicular to the axis).
+std::vector<double> axial_breaks(const Handle(Geom_Curve)& c, double first, double last, const ScrewJoint& joint);
+
 /// Divergence-theorem volume (1/3) sum over faces of the integral of x . n, computed by Green's
 /// theorem in each face's parameter domain along its pcurves.
 double divergence_volume(const TopoDS_Shape& solid);

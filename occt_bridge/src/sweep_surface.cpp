@@ -174,6 +174,47 @@ Handle(Geom_Curve) canonical_curve(const Handle(Geom_Curve)& c0, double& first, 
   return c0;
 }
 
+std::vector<double> axial_breaks(const Handle(Geom_Curve)& c, double first, double last, const ScrewJoint& j) {
+  const gp_Vec w = to_vec(j.direction);
+  auto da = [&](double u) {
+    gp_Pnt p;
+    gp_Vec d;
+    c->D1(u, p, d);
+    return d.Dot(w);
+  };
+  const int n = 64;
+  std::vector<double> cuts;
+  double amin = 1e300, amax = -1e300;
+  for (int k = 0; k <= n; ++k) {
+    double a = gp_Vec(c->Value(first + (last - first) * k / n).XYZ()).Dot(w);
+    amin = std::min(amin, a);
+    amax = std::max(amax, a);
+  }
+  if (amax - amin <= 1e-9 * (1 + std::abs(amax))) return cuts;
+  std::vector<double> u(n + 1), d(n + 1);
+  double dmax = 0;
+  for (int k = 0; k <= n; ++k) {
+    u[k] = first + (last - first) * k / n;
+    d[k] = da(u[k]);
+    dmax = std::max(dmax, std::abs(d[k]));
+  }
+  const double zero = 1e-12 * dmax;
+  for (int k = 1; k <= n; ++k) {
+    if (k < n && std::abs(d[k]) <= zero) {
+      cuts.push_back(u[k]);
+      continue;
+    }
+    if (std::abs(d[k - 1]) <= zero || std::abs(d[k]) <= zero || (d[k - 1] > 0) == (d[k] > 0)) continue;
+    double lo = u[k - 1], hi = u[k], flo = d[k - 1];
+    for (int it = 0; it < 80; ++it) {
+      double m = 0.5 * (lo + hi), fm = da(m);
+      if ((fm > 0) == (flo > 0)) { lo = m; flo = fm; } else hi = m;
+    }
+    cuts.push_back(0.5 * (lo + hi));
+  }
+  return cuts;
+}
+
 std::vector<TopoDS_Face> sweep_curve(const Handle(Geom_Curve)& c, double first, double last,
                                      const ScrewJoint& j, double T, double tol, double* fit_error) {
   std::vector<TopoDS_Face> out;
@@ -200,55 +241,16 @@ std::vector<TopoDS_Face> sweep_curve(const Handle(Geom_Curve)& c, double first, 
   if (!screw) {
     // Two points of one curve at the same axial height and radius would sweep the same circle:
     // split the curve where its axial coordinate turns, so each piece sweeps one-to-one.
-    {
-      const gp_Vec w = to_vec(j.direction);
-      auto da = [&](double u) {
-        gp_Pnt p;
-        gp_Vec d;
-        c->D1(u, p, d);
-        return d.Dot(w);
-      };
-      const int n = 64;
-      std::vector<double> cuts;
-      double amin = 1e300, amax = -1e300;
-      for (int k = 0; k <= n; ++k) {
-        double a = gp_Vec(c->Value(first + (last - first) * k / n).XYZ()).Dot(w);
-        amin = std::min(amin, a);
-        amax = std::max(amax, a);
+    std::vector<double> cuts = axial_breaks(c, first, last, j);
+    if (!cuts.empty()) {
+      double a = first;
+      cuts.push_back(last);
+      for (double b : cuts) {
+        auto part = sweep_curve(c, a, b, j, T, tol, fit_error);
+        out.insert(out.end(), part.begin(), part.end());
+        a = b;
       }
-      if (amax - amin > 1e-9 * (1 + std::abs(amax))) {
-        std::vector<double> u(n + 1), d(n + 1);
-        double dmax = 0;
-        for (int k = 0; k <= n; ++k) {
-          u[k] = first + (last - first) * k / n;
-          d[k] = da(u[k]);
-          dmax = std::max(dmax, std::abs(d[k]));
-        }
-        const double zero = 1e-12 * dmax;
-        for (int k = 1; k <= n; ++k) {
-          if (k < n && std::abs(d[k]) <= zero) {
-            cuts.push_back(u[k]);
-            continue;
-          }
-          if (std::abs(d[k - 1]) <= zero || std::abs(d[k]) <= zero || (d[k - 1] > 0) == (d[k] > 0)) continue;
-          double lo = u[k - 1], hi = u[k], flo = d[k - 1];
-          for (int it = 0; it < 80; ++it) {
-            double m = 0.5 * (lo + hi), fm = da(m);
-            if ((fm > 0) == (flo > 0)) { lo = m; flo = fm; } else hi = m;
-          }
-          cuts.push_back(0.5 * (lo + hi));
-        }
-      }
-      if (!cuts.empty()) {
-        double a = first;
-        cuts.push_back(last);
-        for (double b : cuts) {
-          auto part = sweep_curve(c, a, b, j, T, tol, fit_error);
-          out.insert(out.end(), part.begin(), part.end());
-          a = b;
-        }
-        return out;
-      }
+      return out;
     }
     const gp_Ax1 axis(to_pnt(j.point), gp_Dir(to_vec(j.direction)));
     TopoDS_Edge e = edge_of(c, first, last);

@@ -37,6 +37,7 @@
 #include <TopTools_ListOfShape.hxx>
 #include <TopoDS.hxx>
 #include <TopoDS_Compound.hxx>
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -232,6 +233,96 @@ TopoDS_Shape curve_sweep(const TopoDS_Shape& body, const ScrewJoint& j, double T
   return comp;
 }
 
+/// A curve piece to be revolved.
+struct RevCurve {
+  Handle(Geom_Curve) c;
+  double f, l;
+};
+
+/// Sweeps of curves under a rotation by T < 2 pi. Pieces (split where their axial coordinate
+/// turns) with the same profile (radius as a function of the axial coordinate) lie on one surface
+/// of revolution; when the angular ranges they sweep cover the whole turn at every height, that
+/// surface is swept once, as a full turn of one of them, instead of as overlapping pieces.
+std::vector<std::vector<TopoDS_Face>> revolve_pieces(const std::vector<RevCurve>& curves, const ScrewJoint& j,
+                                                     double T, double tol, double size, double* fit_err) {
+  struct Piece {
+    RevCurve rc;
+    double a0 = 0, a1 = 0;
+    std::vector<double> rho, phi;
+    bool profiled = false;
+  };
+  const Eigen::Vector3d w = j.direction;
+  Eigen::Vector3d e1 = w.unitOrthogonal(), e2 = w.cross(e1);
+  const int K = 9;
+  std::vector<Piece> pieces;
+  for (const auto& rc : curves) {
+    std::vector<double> cuts = axial_breaks(rc.c, rc.f, rc.l, j);
+    cuts.push_back(rc.l);
+    double a = rc.f;
+    for (double b : cuts) {
+      Piece p;
+      p.rc = {rc.c, a, b};
+      auto axial = [&](double s) { return w.dot(to_eigen(rc.c->Value(s)) - j.point); };
+      double A = axial(a), B = axial(b);
+      if (std::abs(B - A) > 1e-9 * size) {
+        p.profiled = true;
+        p.a0 = std::min(A, B);
+        p.a1 = std::max(A, B);
+        for (int k = 0; k < K; ++k) {
+          const double target = p.a0 + (p.a1 - p.a0) * (k + 0.5) / K;
+          double lo = a, hi = b;
+          const bool up = B > A;
+          for (int it = 0; it < 100; ++it) {
+            double m = 0.5 * (lo + hi);
+            ((axial(m) < target) == up ? lo : hi) = m;
+          }
+          Eigen::Vector3d x = to_eigen(rc.c->Value(0.5 * (lo + hi))) - j.point;
+          Eigen::Vector3d r = x - w * w.dot(x);
+          p.rho.push_back(r.norm());
+          p.phi.push_back(std::atan2(e2.dot(r), e1.dot(r)));
+        }
+      }
+      pieces.push_back(p);
+      a = b;
+    }
+  }
+  const double eps = 1e-7 * size;
+  std::vector<bool> done(pieces.size(), false);
+  std::vector<std::vector<TopoDS_Face>> out;
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    if (done[i]) continue;
+    done[i] = true;
+    std::vector<std::size_t> group{i};
+    if (pieces[i].profiled)
+      for (std::size_t k = i + 1; k < pieces.size(); ++k) {
+        if (done[k] || !pieces[k].profiled) continue;
+        bool same = std::abs(pieces[k].a0 - pieces[i].a0) < eps && std::abs(pieces[k].a1 - pieces[i].a1) < eps;
+        for (int m = 0; same && m < K; ++m) same = std::abs(pieces[k].rho[m] - pieces[i].rho[m]) < eps;
+        if (same) group.push_back(k);
+      }
+    bool covered = group.size() > 1;
+    for (int m = 0; covered && m < K; ++m) {
+      std::vector<double> starts;
+      for (auto g : group) starts.push_back(std::fmod(std::fmod(pieces[g].phi[m], 2 * M_PI) + 2 * M_PI, 2 * M_PI));
+      std::sort(starts.begin(), starts.end());
+      for (std::size_t q = 0; q < starts.size() && covered; ++q) {
+        const double next = q + 1 < starts.size() ? starts[q + 1] : starts[0] + 2 * M_PI;
+        covered = next - starts[q] <= T + 1e-9;
+      }
+    }
+    if (covered) {
+      for (auto g : group) done[g] = true;
+      const auto& rc = pieces[i].rc;
+      out.push_back(sweep_curve(rc.c, rc.f, rc.l, j, 2 * M_PI, tol, fit_err));
+    } else {
+      const auto& rc = pieces[i].rc;
+      auto sw = sweep_curve(rc.c, rc.f, rc.l, j, T, tol, fit_err);
+      if (!sw.empty()) out.push_back(sw);
+    }
+  }
+  return out;
+}
+
 /// One stage: the solid swept by `body` (a solid, or faces when dim == 2) under joint j for
 /// q in [0, T]. `sd`, when given, is the entity's signed distance and `sd_motion` the motion that
 /// carries the entity to this stage's swept set (for the certified membership test).
@@ -245,6 +336,20 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
   const auto t_cand = Clock::now();
   Candidates cand;
   cand.varieties += 2;
+  // For a rotation (no pitch) short of a full turn, curve sweeps are collected first: pieces of
+  // different curves that revolve into the same surface of revolution would give partly
+  // overlapping faces, which the arrangement cannot split.
+  const bool rotation_only = j.type == JointType::Revolute && !full_turn;
+  struct Pending {
+    Handle(Geom_Curve) c;
+    double f, l;
+  };
+  std::vector<Pending> pending;
+  auto pending_curves = [](const std::vector<Pending>& p) {
+    std::vector<RevCurve> out;
+    for (const auto& x : p) out.push_back({x.c, x.f, x.l});
+    return out;
+  };
   TopTools_IndexedMapOfShape edges, faces;
   TopExp::MapShapes(body, TopAbs_EDGE, edges);
   TopExp::MapShapes(body, TopAbs_FACE, faces);
@@ -283,6 +388,10 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
     c = canonical_curve(c, f, l, std::max(fit_tol, 1e-10 * esize));
     gp_Pln plane;
     const bool planar = !c->IsKind(STANDARD_TYPE(Geom_Line)) && keeps_plane_of(c, f, l, j, size, &plane);
+    if (!planar && rotation_only) {
+      pending.push_back({c, f, l});
+      continue;
+    }
     auto sw = planar ? planar_curve_sweep(c, f, l, j, T, plane, size) : sweep_curve(c, f, l, j, T, tol, &fit_err);
     if (!sw.empty()) ++cand.varieties;
     cand.faces.insert(cand.faces.end(), sw.begin(), sw.end());
@@ -297,10 +406,14 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
     for (const auto& g : grazing_curves(face, j, fit_tol, esize)) {
       double f = g.first, l = g.last;
       Handle(Geom_Curve) cc = canonical_curve(g.curve, f, l, fit_tol);
+      tools.Append(BRepBuilderAPI_MakeEdge(cc, f, l).Edge());
+      if (rotation_only) {
+        pending.push_back({cc, f, l});
+        continue;
+      }
       auto sw = sweep_curve(cc, f, l, j, T, tol, &fit_err);
       if (!sw.empty()) ++cand.varieties;
       cand.faces.insert(cand.faces.end(), sw.begin(), sw.end());
-      tools.Append(BRepBuilderAPI_MakeEdge(cc, f, l).Edge());
     }
     bool split = false;
     if (!tools.IsEmpty()) {
@@ -319,6 +432,12 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
       }
     }
     if (!split) pieces.push_back(face);
+  }
+  if (!pending.empty()) {
+    for (const auto& sw : revolve_pieces(pending_curves(pending), j, T, tol, size, &fit_err)) {
+      ++cand.varieties;
+      cand.faces.insert(cand.faces.end(), sw.begin(), sw.end());
+    }
   }
   for (const auto& f : pieces) {
     cand.faces.push_back(f);
