@@ -687,7 +687,32 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
     }
     rep.dimension = dim;
     TopoDS_Shape result = shape;
-    if (dim < 3) return fail("the swept set has dimension " + std::to_string(dim) + ": it has no volume");
+    if (dim < 3) {
+      // A point sweeps a curve and a curve a surface: written as edges or faces, with no volume.
+      BRepCheck_Analyzer check(result);
+      rep.valid = check.IsValid();
+      rep.closed = false;
+      for (TopExp_Explorer ex(result, TopAbs_FACE); ex.More(); ex.Next()) ++rep.faces;
+      GProp_GProps g;
+      if (dim == 2) BRepGProp::SurfaceProperties(result, g, 1e-10);
+      else BRepGProp::LinearProperties(result, g);
+      rep.area = dim == 2 ? g.Mass() : 0.0;
+      gp_Pnt c = g.CentreOfMass();
+      rep.centroid[0] = c.X();
+      rep.centroid[1] = c.Y();
+      rep.centroid[2] = c.Z();
+      Bnd_Box bb;
+      BRepBndLib::AddOptimal(result, bb, false, false);
+      bb.Get(rep.bbox_min[0], rep.bbox_min[1], rep.bbox_min[2], rep.bbox_max[0], rep.bbox_max[1], rep.bbox_max[2]);
+      rep.tol_achieved = std::max(fit_err, max_tolerance(result));
+      rep.status = rep.valid ? "ok" : "failed";
+      rep.message = std::string(rep.valid ? "" : "the result is not valid (BRepCheck); ") + "the swept set is a " +
+                    (dim == 2 ? "surface" : "curve") + ": it has no volume";
+      if (opt.verify) rep.message += "; --verify applies to solids only";
+      res.shape = std::make_shared<Shape>(result);
+      rep.seconds_total = since(t_start);
+      return res;
+    }
 
     // Validation.
     const auto t_val = Clock::now();
