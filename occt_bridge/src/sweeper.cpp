@@ -605,9 +605,13 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
     if (!fuse.IsDone() || fuse.HasErrors()) return stage_fail("the union of the swept cells failed");
     result = fuse.Shape();
   }
-  ShapeUpgrade_UnifySameDomain unify(result, true, true, true);
-  unify.Build();
-  result = unify.Shape();
+  try {
+    ShapeUpgrade_UnifySameDomain unify(result, true, true, true);
+    unify.Build();
+    result = unify.Shape();
+  } catch (const Standard_Failure&) {
+    // merging same-domain faces is cosmetic: keep the union with its split faces
+  }
   sec["build"] += since(t_build);
   return result;
 }
@@ -638,11 +642,32 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
       b.Get(x0, y0, z0, x1, y1, z1);
       return std::max({x1 - x0, y1 - y0, z1 - z0, 1e-300});
     };
+    // The model size: the extent of the entity's box corners carried by the motion sampled at
+    // the ends and middles of the joint ranges (a point entity has no extent of its own).
     double size = extent(raw);
-    for (const auto& j : motion.joints) {
-      const double span = std::min(j.hi - j.lo, j.type == JointType::Revolute ? 2 * M_PI : 1e300);
-      if (j.type == JointType::Prismatic) size += span;
-      else size += std::abs(j.pitch) * span;
+    {
+      Bnd_Box eb;
+      BRepBndLib::Add(raw, eb);
+      double x0, y0, z0, x1, y1, z1;
+      eb.Get(x0, y0, z0, x1, y1, z1);
+      Eigen::AlignedBox3d reach;
+      const int n = int(motion.dof());
+      std::vector<double> q(n);
+      int combos = 1;
+      for (int i = 0; i < n && combos < 100000; ++i) combos *= 5;
+      for (int c = 0; c < combos; ++c) {
+        int code = c;
+        for (int i = 0; i < n; ++i) {
+          const auto& jj = motion.joints[i];
+          const double hi = std::min(jj.hi, jj.lo + (jj.type == JointType::Revolute ? 2 * M_PI : 1e300));
+          q[i] = jj.lo + (hi - jj.lo) * (code % 5) / 4.0;
+          code /= 5;
+        }
+        const Eigen::Isometry3d M = motion.transform(q);
+        for (int k = 0; k < 8; ++k)
+          reach.extend(M * Eigen::Vector3d(k & 1 ? x1 : x0, k & 2 ? y1 : y0, k & 4 ? z1 : z0));
+      }
+      size = std::max(size, reach.sizes().maxCoeff());
     }
     rep.tol_requested = spec.tolerance > 0 ? spec.tolerance : 1e-6 * size;
     const double tol = rep.tol_requested;
@@ -718,12 +743,17 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
     const auto t_val = Clock::now();
     BRepCheck_Analyzer check(result);
     rep.valid = check.IsValid();
+    // Closed: every shell of every solid has each edge used twice, with opposite orientations.
+    // Checked solid by solid, so solids that touch along an edge do not count as open.
     int nsolids = 0;
-    for (TopExp_Explorer ex(result, TopAbs_SOLID); ex.More(); ex.Next()) ++nsolids;
-    ShapeAnalysis_Shell sas;
-    sas.LoadShells(result);
-    bool bad = sas.CheckOrientedShells(result, true);
-    rep.closed = nsolids > 0 && !bad && !sas.HasFreeEdges();
+    rep.closed = true;
+    for (TopExp_Explorer ex(result, TopAbs_SOLID); ex.More(); ex.Next()) {
+      ++nsolids;
+      ShapeAnalysis_Shell sas;
+      sas.LoadShells(ex.Current());
+      if (sas.CheckOrientedShells(ex.Current(), true) || sas.HasFreeEdges()) rep.closed = false;
+    }
+    rep.closed = rep.closed && nsolids > 0;
     for (TopExp_Explorer ex(result, TopAbs_FACE); ex.More(); ex.Next()) ++rep.faces;
     GProp_GProps gv, ga;
     BRepGProp::VolumeProperties(result, gv, 1e-10);
