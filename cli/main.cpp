@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 #include "joints_cmd.hpp"
 #include "occt_bridge/sweeper.hpp"
 #include "sweep/error.hpp"
@@ -85,6 +87,7 @@ int cmd_run(int argc, char** argv) {
   sweep::Spec s = sweep::load_spec(a.spec, a.sets);
   sweep::occt::RunOptions opt;
   opt.verify = a.verify;
+  if (isatty(STDERR_FILENO)) opt.progress = [](const std::string& line) { std::cerr << "sweepvol: " << line << "\n"; };
   sweep::occt::RunResult r = sweep::occt::run_sweep(s, opt);
   if (r.report.ok() && !a.out.empty()) {
     try {

@@ -684,6 +684,9 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
     int dim = rep.dimension;
     const int n = int(motion.dof());
     for (int i = n - 1; i >= 0; --i) {
+      if (opt.progress)
+        opt.progress("stage " + std::to_string(n - i) + "/" + std::to_string(n) + ": joint " + std::to_string(i + 1) +
+                     " (" + to_string(motion.joints[i].type) + ")");
       ScrewJoint j = motion.joints[i];
       double T = j.hi - j.lo;
       if (j.type == JointType::Revolute && T >= 2 * M_PI) T = 2 * M_PI;  // a full turn covers everything
@@ -772,6 +775,7 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
     rep.seconds["validation"] = since(t_val);
 
     if (opt.verify) {
+      if (opt.progress) opt.progress("Monte Carlo volume");
       const auto t_mc = Clock::now();
       Eigen::AlignedBox3d box(Eigen::Vector3d(rep.bbox_min[0], rep.bbox_min[1], rep.bbox_min[2]),
                               Eigen::Vector3d(rep.bbox_max[0], rep.bbox_max[1], rep.bbox_max[2]));

@@ -2,6 +2,8 @@
 /// @file sweeper.hpp
 /// The swept solid of a spec as an OCCT B-rep, its validation and its report. This header holds
 /// no OCCT type: the shape travels as an opaque handle.
+#include <cstdint>
+#include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -15,6 +17,8 @@ struct RunOptions {
   bool verify = false;                 ///< add the Monte Carlo volume (--verify)
   std::size_t mc_samples = 400000;     ///< Monte Carlo sample count
   std::uint64_t mc_seed = 20261123;    ///< fixed, so runs are deterministic
+  /// Called with a short line at each step of a long run (the CLI prints it on a terminal).
+  std::function<void(const std::string&)> progress;
 };
 
 /// Report v1 (SPEC.md), plus `dimension` (3 solid, 2 surface, 1 curve, 0 point).
