@@ -24,6 +24,10 @@ const char* kUsage =
     "      compute the swept solid; OUT by extension: .step/.stp, .brep, .stl (binary), .off\n"
     "  check SPEC [--set PATH=VALUE]...\n"
     "      validate the spec only\n"
+    "  varieties SPEC [-o V.json] [--faces F.brep|F.step] [--set PATH=VALUE]...\n"
+    "      the boundary varieties of every stage: fixed and free parameters, the part on the final\n"
+    "      boundary and its volume contribution; --faces writes the last stage's candidate faces\n"
+    "      validate the spec only\n"
     "  joints ASSEMBLY.json [--json] [--dot G.dot] [--motion-for PART [--range NAME=lo,hi]...]\n"
     "      kinematic joint recognition\n"
     "  --help, --version\n"
@@ -31,7 +35,7 @@ const char* kUsage =
     "exit codes: 0 success, 2 invalid input, 3 computation failed or result not valid, 1 internal error\n";
 
 struct Args {
-  std::string spec, out, report;
+  std::string spec, out, report, faces;
   std::vector<std::string> sets;
   bool verify = false;
 };
@@ -49,6 +53,7 @@ Args parse_args(int argc, char** argv, bool allow_output) {
     else if (allow_output && s == "-o") a.out = value("-o");
     else if (allow_output && s == "--report") a.report = value("--report");
     else if (allow_output && s == "--verify") a.verify = true;
+    else if (allow_output && s == "--faces") a.faces = value("--faces");
     else if (!s.empty() && s[0] == '-') throw sweep::InputError(s, "unknown option '" + s + "'");
     else if (a.spec.empty()) a.spec = s;
     else throw sweep::InputError(s, "unexpected argument '" + s + "'");
@@ -110,6 +115,44 @@ int cmd_run(int argc, char** argv) {
   return 0;
 }
 
+int cmd_varieties(int argc, char** argv) {
+  Args a = parse_args(argc, argv, true);
+  if (!a.faces.empty() && !sweep::occt::supported_output(a.faces))
+    throw sweep::InputError("--faces", "unsupported extension in '" + a.faces + "' (expected .step, .stp or .brep)");
+  sweep::Spec s = sweep::load_spec(a.spec, a.sets);
+  sweep::occt::RunOptions opt;
+  std::vector<sweep::occt::Variety> vars;
+  std::shared_ptr<const sweep::occt::Shape> faces;
+  opt.varieties = &vars;
+  opt.variety_faces = &faces;
+  if (isatty(STDERR_FILENO)) opt.progress = [](const std::string& line) { std::cerr << "sweepvol: " << line << "\n"; };
+  sweep::occt::RunResult r = sweep::occt::run_sweep(s, opt);
+  nlohmann::json out;
+  out["sweep_varieties"] = 1;
+  out["status"] = r.report.status;
+  out["message"] = r.report.message;
+  out["volume"] = r.report.to_json()["volume"];
+  out["varieties"] = nlohmann::json::array();
+  double sum = 0;
+  for (const auto& v : vars) {
+    out["varieties"].push_back(v.to_json());
+    if (v.final_stage) sum += v.volume;
+  }
+  out["volume_from_varieties"] = sum;
+  const std::string text = out.dump(2) + "\n";
+  if (r.report.ok() && faces && !a.faces.empty()) sweep::occt::write_shape(*faces, a.faces, 1e-3);
+  if (!a.out.empty()) {
+    if (!write_text_atomic(a.out, text)) throw sweep::ComputeError("cannot write '" + a.out + "'");
+  } else {
+    std::cout << text;
+  }
+  if (!r.report.ok()) {
+    std::cerr << "sweepvol: failed: " << r.report.message << "\n";
+    return 3;
+  }
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -129,6 +172,7 @@ int main(int argc, char** argv) {
     }
     if (cmd == "run") return cmd_run(argc, argv);
     if (cmd == "check") return cmd_check(argc, argv);
+    if (cmd == "varieties") return cmd_varieties(argc, argv);
     if (cmd == "joints") return sweep_joints_main(argc - 1, argv + 1);
     std::cerr << "sweepvol: unknown command '" << cmd << "'\n" << kUsage;
     return 2;

@@ -106,3 +106,35 @@ TEST_CASE("Sweep: overlapping screw turns agree with Monte Carlo membership") {
   // the tube formula (no overlap) would give pi L + 4/3 pi = 201.93: the overlap is resolved
   CHECK(r.report.volume_brep < 190.0);
 }
+
+TEST_CASE("Varieties: the last stage's contributions add up to the divergence volume") {
+  for (const char* name : {"/examples/box_revolve_90.json", "/examples/sphere_extrude.json",
+                           "/examples/chains/box_revolve_extrude.json", "/examples/cylinder_flip.json"}) {
+    CAPTURE(name);
+    sweep::Spec spec = sweep::load_spec(std::string(SWEEP_SOURCE_DIR) + name);
+    sweep::occt::RunOptions opt;
+    std::vector<sweep::occt::Variety> vars;
+    std::shared_ptr<const sweep::occt::Shape> faces;
+    opt.varieties = &vars;
+    opt.variety_faces = &faces;
+    auto r = sweep::occt::run_sweep(spec, opt);
+    REQUIRE(r.report.ok());
+    REQUIRE(faces);
+    double sum = 0, area = 0;
+    int limits = 0;
+    for (const auto& v : vars) {
+      CHECK((v.type == "limit" || v.type == "boundary" || v.type == "interior"));
+      if (v.type == "limit") {
+        ++limits;
+        CHECK(v.fixed.size() == 1);  // the joint variable, at a range end
+      }
+      if (v.final_stage) {
+        sum += v.volume;
+        area += v.boundary_area;
+      }
+    }
+    CHECK(limits >= 1);
+    CHECK(sum == Approx(r.report.volume_divergence).epsilon(1e-9));
+    CHECK(area == Approx(r.report.area).epsilon(1e-6));
+  }
+}

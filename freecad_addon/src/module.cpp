@@ -144,20 +144,14 @@ py::object to_python(const nlohmann::json& j) {
   return py::module_::import("json").attr("loads")(j.dump());
 }
 
-py::dict run(const py::handle& spec, const std::string& base_dir, const std::vector<std::string>& overrides,
-             const std::optional<std::string>& entity_brep, bool verify, std::size_t mc_samples,
-             std::uint64_t mc_seed, const std::string& source) {
-  Prepared p = prepare(spec, base_dir, overrides, entity_brep, source);
-  sweep::occt::RunOptions opt;
-  opt.verify = verify;
-  opt.mc_samples = mc_samples;
-  opt.mc_seed = mc_seed;
+/// Runs the sweep with the GIL released; input errors name what the caller passed.
+sweep::occt::RunResult guarded_run(const Prepared& p, const sweep::occt::RunOptions& opt, const std::string& source,
+                                   std::string* brep) {
   sweep::occt::RunResult r;
-  std::string brep;
   try {
     py::gil_scoped_release unlocked;
     r = sweep::occt::run_sweep(p.spec, opt);
-    if (r.shape) brep = sweep::occt::shape_to_brep_string(*r.shape);
+    if (r.shape && brep) *brep = sweep::occt::shape_to_brep_string(*r.shape);
   } catch (const sweep::InputError& e) {
     if (p.entity_file && e.pointer().rfind("/entity", 0) == 0) {
       // The temporary file is ours, not the caller's: name what they passed instead.
@@ -172,10 +166,42 @@ py::dict run(const py::handle& spec, const std::string& base_dir, const std::vec
   } catch (...) {
     throw sweep::ComputeError("the geometry kernel failed with an unexpected exception");
   }
+  return r;
+}
+
+py::dict run(const py::handle& spec, const std::string& base_dir, const std::vector<std::string>& overrides,
+             const std::optional<std::string>& entity_brep, bool verify, std::size_t mc_samples,
+             std::uint64_t mc_seed, const std::string& source) {
+  Prepared p = prepare(spec, base_dir, overrides, entity_brep, source);
+  sweep::occt::RunOptions opt;
+  opt.verify = verify;
+  opt.mc_samples = mc_samples;
+  opt.mc_seed = mc_seed;
+  std::string brep;
+  sweep::occt::RunResult r = guarded_run(p, opt, source, &brep);
   py::dict out;
   out["report"] = to_python(r.report.to_json());
   out["brep"] = r.shape && r.report.ok() ? py::object(py::str(brep)) : py::object(py::none());
   out["spec"] = to_python(spec_json(p));
+  return out;
+}
+
+py::dict varieties(const py::handle& spec, const std::string& base_dir, const std::vector<std::string>& overrides,
+                   const std::optional<std::string>& entity_brep, const std::string& source) {
+  Prepared p = prepare(spec, base_dir, overrides, entity_brep, source);
+  sweep::occt::RunOptions opt;
+  std::vector<sweep::occt::Variety> vars;
+  std::shared_ptr<const sweep::occt::Shape> faces;
+  opt.varieties = &vars;
+  opt.variety_faces = &faces;
+  sweep::occt::RunResult r = guarded_run(p, opt, source, nullptr);
+  nlohmann::json list = nlohmann::json::array();
+  for (const auto& v : vars) list.push_back(v.to_json());
+  py::dict out;
+  out["report"] = to_python(r.report.to_json());
+  out["varieties"] = to_python(list);
+  out["brep"] = faces && r.report.ok() ? py::object(py::str(sweep::occt::shape_to_brep_string(*faces)))
+                                       : py::object(py::none());
   return out;
 }
 
@@ -248,5 +274,11 @@ Returns {"report": report v1 dict, "brep": BRep text of the solid or None unless
         py::arg("source") = std::string(),
         R"(Validates a spec only. Returns {"entity", "dimension", "motion", "joints", "spec"}.
 Raises InputError for invalid input.)");
+  m.def("varieties", &varieties, py::arg("spec"), py::arg("base_dir") = std::string(),
+        py::arg("overrides") = std::vector<std::string>(), py::arg("entity_brep") = py::none(),
+        py::arg("source") = std::string(),
+        R"(The boundary varieties of every stage. Returns {"report", "varieties" (list of dicts: stage, joint,
+type, what, fixed, free, faces, area, and for the last stage boundary_area and volume), "brep" (the last
+stage's candidate faces as BRep text, or None when the sweep failed)}.)");
   m.def("file_volume", &file_volume, py::arg("path"), "Volume of the shapes in a STEP or BREP file.");
 }

@@ -408,12 +408,15 @@ def varieties_available():
 
 def make_varieties(doc, obj, name="Varieties"):
     """Adds a Part::Feature holding the boundary varieties of a Sweep (its candidate boundary
-    patches). Raises NotImplementedError while the core does not compute them."""
+    patches). Raises NotImplementedError when the core does not compute them, RuntimeError when the
+    sweep itself fails."""
     if not varieties_available():
         raise NotImplementedError("boundary varieties are not available yet in the sweep core")
     spec, base_dir, _ = compose(obj)
     entity = global_shape(obj.Entity).exportBrepToString() if obj.Entity is not None else None
     result = core().varieties(spec, base_dir=base_dir, entity_brep=entity)
+    if result["brep"] is None:
+        raise RuntimeError("no varieties: the sweep failed: " + result["report"]["message"])
     shape = Part.Shape()
     shape.importBrepFromString(result["brep"])
     out = doc.addObject("Part::Feature", name)

@@ -70,6 +70,11 @@ double face_integral(const TopoDS_Face& face) {
 
 }  // namespace
 
+double face_divergence(const TopoDS_Face& f) {
+  const double i = face_integral(f);
+  return (f.Orientation() == TopAbs_REVERSED ? -i : i) / 3.0;
+}
+
 double divergence_volume(const TopoDS_Shape& solid) {
   double v = 0;
   for (TopExp_Explorer ex(solid, TopAbs_FACE); ex.More(); ex.Next()) {

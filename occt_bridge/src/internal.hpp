@@ -58,6 +58,8 @@ std::vector<double> axial_breaks(const Handle(Geom_Curve)& c, double first, doub
 /// Divergence-theorem volume (1/3) sum over faces of the integral of x . n, computed by Green's
 /// theorem in each face's parameter domain along its pcurves.
 double divergence_volume(const TopoDS_Shape& solid);
+/// The same integral over one face, signed by its orientation.
+double face_divergence(const TopoDS_Face& face);
 
 /// True when the motion keeps a plane containing the curve (then written to `plane`): a plane
 /// perpendicular to a rotation axis, or one containing a translation direction.

@@ -39,6 +39,7 @@
 #include <TopoDS_Compound.hxx>
 #include <algorithm>
 #include <chrono>
+#include <map>
 #include <cstdio>
 #include <cstdlib>
 #include <sstream>
@@ -74,6 +75,16 @@ nlohmann::json Report::to_json() const {
   nlohmann::json s = seconds;
   s["total"] = seconds_total;
   j["seconds"] = s;
+  return j;
+}
+
+nlohmann::json Variety::to_json() const {
+  nlohmann::json j = {{"stage", stage}, {"joint", joint}, {"type", type}, {"what", what}, {"fixed", fixed},
+                      {"free", free}, {"faces", faces}, {"area", area}};
+  if (final_stage) {
+    j["boundary_area"] = boundary_area;
+    j["volume"] = volume;
+  }
   return j;
 }
 
@@ -163,7 +174,23 @@ double max_tolerance(const TopoDS_Shape& s) {
 
 struct Candidates {
   std::vector<TopoDS_Face> faces;
+  std::vector<int> ids;         ///< variety of each face (index into vars)
+  std::vector<Variety> vars;
   int varieties = 0;
+  int add_variety(Variety v) {
+    vars.push_back(std::move(v));
+    return int(vars.size()) - 1;
+  }
+  void add(int id, const std::vector<TopoDS_Face>& fs) {
+    for (const auto& f : fs) {
+      faces.push_back(f);
+      ids.push_back(id);
+      vars[id].faces += 1;
+      GProp_GProps g;
+      BRepGProp::SurfaceProperties(f, g);
+      vars[id].area += g.Mass();
+    }
+  }
 };
 
 /// Accumulates seconds per step over stages.
@@ -237,14 +264,16 @@ TopoDS_Shape curve_sweep(const TopoDS_Shape& body, const ScrewJoint& j, double T
 struct RevCurve {
   Handle(Geom_Curve) c;
   double f, l;
+  int source = -1;  ///< the variety it belongs to
 };
 
 /// Sweeps of curves under a rotation by T < 2 pi. Pieces (split where their axial coordinate
 /// turns) with the same profile (radius as a function of the axial coordinate) lie on one surface
 /// of revolution; when the angular ranges they sweep cover the whole turn at every height, that
 /// surface is swept once, as a full turn of one of them, instead of as overlapping pieces.
-std::vector<std::vector<TopoDS_Face>> revolve_pieces(const std::vector<RevCurve>& curves, const ScrewJoint& j,
-                                                     double T, double tol, double size, double* fit_err) {
+std::vector<std::pair<int, std::vector<TopoDS_Face>>> revolve_pieces(const std::vector<RevCurve>& curves,
+                                                                     const ScrewJoint& j, double T, double tol,
+                                                                     double size, double* fit_err) {
   struct Piece {
     RevCurve rc;
     double a0 = 0, a1 = 0;
@@ -261,7 +290,7 @@ std::vector<std::vector<TopoDS_Face>> revolve_pieces(const std::vector<RevCurve>
     double a = rc.f;
     for (double b : cuts) {
       Piece p;
-      p.rc = {rc.c, a, b};
+      p.rc = {rc.c, a, b, rc.source};
       auto axial = [&](double s) { return w.dot(to_eigen(rc.c->Value(s)) - j.point); };
       double A = axial(a), B = axial(b);
       if (std::abs(B - A) > 1e-9 * size) {
@@ -288,7 +317,7 @@ std::vector<std::vector<TopoDS_Face>> revolve_pieces(const std::vector<RevCurve>
   }
   const double eps = 1e-7 * size;
   std::vector<bool> done(pieces.size(), false);
-  std::vector<std::vector<TopoDS_Face>> out;
+  std::vector<std::pair<int, std::vector<TopoDS_Face>>> out;
   for (std::size_t i = 0; i < pieces.size(); ++i) {
     if (done[i]) continue;
     done[i] = true;
@@ -313,11 +342,11 @@ std::vector<std::vector<TopoDS_Face>> revolve_pieces(const std::vector<RevCurve>
     if (covered) {
       for (auto g : group) done[g] = true;
       const auto& rc = pieces[i].rc;
-      out.push_back(sweep_curve(rc.c, rc.f, rc.l, j, 2 * M_PI, tol, fit_err));
+      out.push_back({rc.source, sweep_curve(rc.c, rc.f, rc.l, j, 2 * M_PI, tol, fit_err)});
     } else {
       const auto& rc = pieces[i].rc;
       auto sw = sweep_curve(rc.c, rc.f, rc.l, j, T, tol, fit_err);
-      if (!sw.empty()) out.push_back(sw);
+      if (!sw.empty()) out.push_back({rc.source, sw});
     }
   }
   return out;
@@ -328,7 +357,7 @@ std::vector<std::vector<TopoDS_Face>> revolve_pieces(const std::vector<RevCurve>
 /// carries the entity to this stage's swept set (for the certified membership test).
 TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j, double T, const SignedDistance* sd,
                          const Motion& sd_motion, double esize, double size, double tol, double fit_tol,
-                         double& fit_err, Report& rep) {
+                         double& fit_err, Report& rep, int stage, int joint_no, Candidates* cand_out) {
   Seconds sec{rep.seconds};
   auto stage_fail = [](const std::string& m) -> TopoDS_Shape { throw ComputeError(m); };
   const bool full_turn = j.type == JointType::Revolute && T >= 2 * M_PI - 1e-12;
@@ -336,6 +365,19 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
   const auto t_cand = Clock::now();
   Candidates cand;
   cand.varieties += 2;
+  const std::string qn = "q" + std::to_string(joint_no);
+  auto variety = [&](const std::string& type, const std::string& what, nlohmann::json fixed, nlohmann::json free) {
+    Variety v;
+    v.stage = stage;
+    v.joint = joint_no;
+    v.type = type;
+    v.what = what;
+    v.fixed = std::move(fixed);
+    v.free = std::move(free);
+    return cand.add_variety(std::move(v));
+  };
+  const nlohmann::json qfree = {{qn, {0.0, T}}};
+  int edge_no = 0;
   // For a rotation (no pitch) short of a full turn, curve sweeps are collected first: pieces of
   // different curves that revolve into the same surface of revolution would give partly
   // overlapping faces, which the arrangement cannot split.
@@ -343,11 +385,12 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
   struct Pending {
     Handle(Geom_Curve) c;
     double f, l;
+    int source;
   };
   std::vector<Pending> pending;
   auto pending_curves = [](const std::vector<Pending>& p) {
     std::vector<RevCurve> out;
-    for (const auto& x : p) out.push_back({x.c, x.f, x.l});
+    for (const auto& x : p) out.push_back({x.c, x.f, x.l, x.source});
     return out;
   };
   TopTools_IndexedMapOfShape edges, faces;
@@ -388,13 +431,18 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
     c = canonical_curve(c, f, l, std::max(fit_tol, 1e-10 * esize));
     gp_Pln plane;
     const bool planar = !c->IsKind(STANDARD_TYPE(Geom_Line)) && keeps_plane_of(c, f, l, j, size, &plane);
+    nlohmann::json efree = qfree;
+    efree["s"] = {f, l};
+    const int vid = variety("boundary", "entity edge " + std::to_string(++edge_no) + " swept by joint " +
+                                            std::to_string(joint_no) + (planar ? " (a planar region)" : ""),
+                            nlohmann::json::object(), efree);
     if (!planar && rotation_only) {
-      pending.push_back({c, f, l});
+      pending.push_back({c, f, l, vid});
       continue;
     }
     auto sw = planar ? planar_curve_sweep(c, f, l, j, T, plane, size) : sweep_curve(c, f, l, j, T, tol, &fit_err);
     if (!sw.empty()) ++cand.varieties;
-    cand.faces.insert(cand.faces.end(), sw.begin(), sw.end());
+    cand.add(vid, sw);
   }
   // Grazing curves: their sweeps are candidates, and they split the entity's faces into pieces
   // where n . v keeps one sign (each piece is then wholly inside the swept set or partly on its
@@ -407,13 +455,18 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
       double f = g.first, l = g.last;
       Handle(Geom_Curve) cc = canonical_curve(g.curve, f, l, fit_tol);
       tools.Append(BRepBuilderAPI_MakeEdge(cc, f, l).Edge());
+      nlohmann::json gfree = qfree;
+      gfree["s"] = {f, l};
+      const int vid = variety("interior", "grazing curve (n . v = 0) on entity face " + std::to_string(k) +
+                                              " swept by joint " + std::to_string(joint_no),
+                              nlohmann::json::object(), gfree);
       if (rotation_only) {
-        pending.push_back({cc, f, l});
+        pending.push_back({cc, f, l, vid});
         continue;
       }
       auto sw = sweep_curve(cc, f, l, j, T, tol, &fit_err);
       if (!sw.empty()) ++cand.varieties;
-      cand.faces.insert(cand.faces.end(), sw.begin(), sw.end());
+      cand.add(vid, sw);
     }
     bool split = false;
     if (!tools.IsEmpty()) {
@@ -434,14 +487,22 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
     if (!split) pieces.push_back(face);
   }
   if (!pending.empty()) {
-    for (const auto& sw : revolve_pieces(pending_curves(pending), j, T, tol, size, &fit_err)) {
+    for (const auto& [vid, sw] : revolve_pieces(pending_curves(pending), j, T, tol, size, &fit_err)) {
       ++cand.varieties;
-      cand.faces.insert(cand.faces.end(), sw.begin(), sw.end());
+      cand.add(vid, sw);
     }
   }
-  for (const auto& f : pieces) {
-    cand.faces.push_back(f);
-    if (!full_turn) cand.faces.push_back(TopoDS::Face(moved(f, j.transform(T))));
+  {
+    const int lo_id = variety("limit", "the entity at the start of joint " + std::to_string(joint_no) + "'s range",
+                              {{qn, 0.0}}, nlohmann::json::object());
+    const int hi_id = full_turn ? -1
+                                : variety("limit", "the entity at the end of joint " + std::to_string(joint_no) +
+                                                       "'s range",
+                                          {{qn, T}}, nlohmann::json::object());
+    for (const auto& f : pieces) {
+      cand.add(lo_id, {f});
+      if (!full_turn) cand.add(hi_id, {TopoDS::Face(moved(f, j.transform(T)))});
+    }
   }
   rep.varieties += cand.varieties;
   sec["varieties"] += since(t_cand);
@@ -464,7 +525,9 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
     const double delta = 1e-4 * size, fine = std::max(1e-7 * size, 20 * fit_err);
     auto traj = [&](const Eigen::Vector3d& x) { return swept_by_trajectory(body, solid_entity, j, T, x, 1e-10 * size); };
     std::vector<TopoDS_Face> keep;
-    for (const auto& f : cand.faces) {
+    std::vector<int> keep_ids;
+    for (std::size_t fi = 0; fi < cand.faces.size(); ++fi) {
+      const TopoDS_Face& f = cand.faces[fi];
       double u0, u1, v0, v1;
       BRepTools::UVBounds(f, u0, u1, v0, v1);
       BRepTopAdaptor_FClass2d fc(f, 1e-9);
@@ -483,10 +546,14 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
           if ((!member(p + delta * nn) || !member(p - delta * nn)) && (!traj(p + fine * nn) || !traj(p - fine * nn)))
             internal = false;
         }
-      if (!internal || tested < 4) keep.push_back(f);
+      if (!internal || tested < 4) {
+        keep.push_back(f);
+        keep_ids.push_back(cand.ids[fi]);
+      }
     }
     sec["pruning"] += since(t_prune);
     cand.faces.swap(keep);
+    cand.ids.swap(keep_ids);
   }
 
 
@@ -517,7 +584,9 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
         }
       return n >= 3;
     };
-    for (const auto& f : cand.faces) {
+    std::vector<int> uniq_ids;
+    for (std::size_t fi = 0; fi < cand.faces.size(); ++fi) {
+      const TopoDS_Face& f = cand.faces[fi];
       GProp_GProps g;
       BRepGProp::SurfaceProperties(f, g);
       Bnd_Box b;
@@ -537,10 +606,12 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
       }
       if (!dup) {
         uniq.push_back(f);
+        uniq_ids.push_back(cand.ids[fi]);
         props.push_back({g.Mass(), b});
       }
     }
     cand.faces.swap(uniq);
+    cand.ids.swap(uniq_ids);
   }
 
   // Arrangement of all candidate faces.
@@ -613,6 +684,7 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
     // merging same-domain faces is cosmetic: keep the union with its split faces
   }
   sec["build"] += since(t_build);
+  if (cand_out) *cand_out = std::move(cand);
   return result;
 }
 
@@ -682,6 +754,7 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
 
     // Stages, innermost joint first: each sweeps the previous stage's set.
     int dim = rep.dimension;
+    Candidates last_cands;
     const int n = int(motion.dof());
     for (int i = n - 1; i >= 0; --i) {
       if (opt.progress)
@@ -701,8 +774,12 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
         sd_motion.joints = {j};
         sd_motion.joints[0].hi = j.lo + T;
         const bool use_sd = sd && i == n - 1 && dim == 3;
+        Candidates stage_cands;
         shape = solid_sweep(body, dim, j, T, use_sd ? sd.get() : nullptr, sd_motion, extent(body), size, tol, fit_tol,
-                            fit_err, rep);
+                            fit_err, rep, n - i, i + 1, &stage_cands);
+        if (i == 0) last_cands = std::move(stage_cands);
+        else if (opt.varieties)
+          opt.varieties->insert(opt.varieties->end(), stage_cands.vars.begin(), stage_cands.vars.end());
         // a single solid travels on as itself (classifiers want a solid, not a compound of one)
         TopExp_Explorer sx(shape, TopAbs_SOLID);
         if (sx.More()) {
@@ -773,6 +850,64 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
     rep.volume_divergence = divergence_volume(result);
     rep.tol_achieved = std::max(fit_err, max_tolerance(result));
     rep.seconds["validation"] = since(t_val);
+
+    if (opt.varieties || opt.variety_faces) {
+      // Each face of the result lies on the surface of the candidate it was cut from.
+      std::map<const Geom_Surface*, int> by_surface;
+      TopLoc_Location loc;
+      for (std::size_t k = 0; k < last_cands.faces.size(); ++k)
+        by_surface[BRep_Tool::Surface(last_cands.faces[k], loc).get()] = last_cands.ids[k];
+      for (auto& v : last_cands.vars) v.final_stage = true;
+      for (TopExp_Explorer ex(result, TopAbs_FACE); ex.More(); ex.Next()) {
+        const TopoDS_Face& f = TopoDS::Face(ex.Current());
+        GProp_GProps g;
+        BRepGProp::SurfaceProperties(f, g);
+        const double area = g.Mass(), vol = face_divergence(f);
+        auto it = by_surface.find(BRep_Tool::Surface(f, loc).get());
+        if (it != by_surface.end()) {
+          last_cands.vars[it->second].boundary_area += area;
+          last_cands.vars[it->second].volume += vol;
+          continue;
+        }
+        // A face merged from several candidates gets a surface of its own: share it out by the
+        // candidates its sample points lie on.
+        double u0, u1, v0, v1;
+        BRepTools::UVBounds(f, u0, u1, v0, v1);
+        BRepTopAdaptor_FClass2d fc(f, 1e-9);
+        BRepAdaptor_Surface S(f);
+        std::map<int, int> hits;
+        int total = 0;
+        for (int a = 0; a < 8; ++a)
+          for (int b = 0; b < 8; ++b) {
+            gp_Pnt2d uv(u0 + (u1 - u0) * (a + 0.5) / 8, v0 + (v1 - v0) * (b + 0.5) / 8);
+            if (fc.Perform(uv) != TopAbs_IN) continue;
+            const gp_Pnt p = S.Value(uv.X(), uv.Y());
+            for (std::size_t k = 0; k < last_cands.faces.size(); ++k) {
+              const TopoDS_Face& cf = last_cands.faces[k];
+              GeomAPI_ProjectPointOnSurf proj(p, BRep_Tool::Surface(cf));
+              if (proj.NbPoints() == 0 || proj.LowerDistance() > 1e-6 * size) continue;
+              double pu, pv;
+              proj.LowerDistanceParameters(pu, pv);
+              if (BRepTopAdaptor_FClass2d(cf, 1e-9).Perform(gp_Pnt2d(pu, pv)) == TopAbs_OUT) continue;
+              ++hits[last_cands.ids[k]];
+              ++total;
+              break;
+            }
+          }
+        for (const auto& [id, count] : hits) {
+          last_cands.vars[id].boundary_area += area * count / total;
+          last_cands.vars[id].volume += vol * count / total;
+        }
+      }
+      if (opt.varieties) opt.varieties->insert(opt.varieties->end(), last_cands.vars.begin(), last_cands.vars.end());
+      if (opt.variety_faces) {
+        TopoDS_Compound comp;
+        BRep_Builder bb;
+        bb.MakeCompound(comp);
+        for (const auto& f : last_cands.faces) bb.Add(comp, f);
+        *opt.variety_faces = std::make_shared<Shape>(comp);
+      }
+    }
 
     if (opt.verify) {
       if (opt.progress) opt.progress("Monte Carlo volume");

@@ -7,10 +7,33 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "sweep/spec.hpp"
 
 namespace sweep::occt {
+
+/// The computed shape (an OCCT TopoDS_Shape inside).
+class Shape;
+
+/// One boundary variety of a stage (000_0a5975c48c1ac19b.txt, section 3): the parameters it fixes,
+/// the ones left free with their domain, and for the last stage the part of it on the final
+/// boundary with its divergence-theorem contribution to the volume (eq. 14).
+struct Variety {
+  int stage = 0;            ///< 1 = innermost joint's sweep
+  int joint = 0;            ///< 1-based joint number, outermost first (SPEC.md)
+  std::string type;         ///< "limit" (joint at a range end), "boundary" (an entity edge swept),
+                            ///< "interior" (a grazing curve swept: Jacobian rank deficiency, n . v = 0)
+  std::string what;         ///< a readable description
+  nlohmann::json fixed = nlohmann::json::object();  ///< fixed parameters and values
+  nlohmann::json free = nlohmann::json::object();   ///< free parameters and their domains
+  int faces = 0;            ///< candidate faces built for it
+  double area = 0;          ///< their area
+  bool final_stage = false;
+  double boundary_area = 0; ///< area of the final boundary lying on it (last stage only)
+  double volume = 0;        ///< its contribution to the volume, 1/3 integral of x . n (last stage only)
+  nlohmann::json to_json() const;
+};
 
 /// Settings with their defaults.
 struct RunOptions {
@@ -19,6 +42,10 @@ struct RunOptions {
   std::uint64_t mc_seed = 20261123;    ///< fixed, so runs are deterministic
   /// Called with a short line at each step of a long run (the CLI prints it on a terminal).
   std::function<void(const std::string&)> progress;
+  /// When set, receives every boundary variety of every stage.
+  std::vector<Variety>* varieties = nullptr;
+  /// When set, receives the candidate faces of the last stage (a compound), for display.
+  std::shared_ptr<const Shape>* variety_faces = nullptr;
 };
 
 /// Report v1 (SPEC.md), plus `dimension` (3 solid, 2 surface, 1 curve, 0 point).
@@ -40,9 +67,6 @@ struct Report {
   bool ok() const { return status == "ok"; }
   nlohmann::json to_json() const;
 };
-
-/// The computed shape (an OCCT TopoDS_Shape inside).
-class Shape;
 
 struct RunResult {
   Report report;
