@@ -172,6 +172,15 @@ double max_tolerance(const TopoDS_Shape& s) {
   return t;
 }
 
+void set_centroid_and_box(Report& rep, const gp_Pnt& c, const TopoDS_Shape& result) {
+  rep.centroid[0] = c.X();
+  rep.centroid[1] = c.Y();
+  rep.centroid[2] = c.Z();
+  Bnd_Box bb;
+  BRepBndLib::AddOptimal(result, bb, false, false);
+  bb.Get(rep.bbox_min[0], rep.bbox_min[1], rep.bbox_min[2], rep.bbox_max[0], rep.bbox_max[1], rep.bbox_max[2]);
+}
+
 struct Candidates {
   std::vector<TopoDS_Face> faces;
   std::vector<int> ids;         ///< variety of each face (index into vars)
@@ -802,13 +811,7 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
       if (dim == 2) BRepGProp::SurfaceProperties(result, g, 1e-10);
       else BRepGProp::LinearProperties(result, g);
       rep.area = dim == 2 ? g.Mass() : 0.0;
-      gp_Pnt c = g.CentreOfMass();
-      rep.centroid[0] = c.X();
-      rep.centroid[1] = c.Y();
-      rep.centroid[2] = c.Z();
-      Bnd_Box bb;
-      BRepBndLib::AddOptimal(result, bb, false, false);
-      bb.Get(rep.bbox_min[0], rep.bbox_min[1], rep.bbox_min[2], rep.bbox_max[0], rep.bbox_max[1], rep.bbox_max[2]);
+      set_centroid_and_box(rep, g.CentreOfMass(), result);
       rep.tol_achieved = std::max(fit_err, max_tolerance(result));
       rep.status = rep.valid ? "ok" : "failed";
       rep.message = std::string(rep.valid ? "" : "the result is not valid (BRepCheck); ") + "the swept set is a " +
@@ -840,13 +843,7 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
     BRepGProp::SurfaceProperties(result, ga, 1e-10);
     rep.volume_brep = gv.Mass();
     rep.area = ga.Mass();
-    gp_Pnt c = gv.CentreOfMass();
-    rep.centroid[0] = c.X();
-    rep.centroid[1] = c.Y();
-    rep.centroid[2] = c.Z();
-    Bnd_Box bb;
-    BRepBndLib::AddOptimal(result, bb, false, false);
-    bb.Get(rep.bbox_min[0], rep.bbox_min[1], rep.bbox_min[2], rep.bbox_max[0], rep.bbox_max[1], rep.bbox_max[2]);
+    set_centroid_and_box(rep, gv.CentreOfMass(), result);
     rep.volume_divergence = divergence_volume(result);
     rep.tol_achieved = std::max(fit_err, max_tolerance(result));
     rep.seconds["validation"] = since(t_val);
