@@ -27,6 +27,10 @@ rm -rf -- "$work"
 mkdir -p "$work/home/Mod"
 ln -s "$addon" "$work/home/Mod/Sweep"
 ln -s "$lib" "$work/home/Mod/SweepLib"
+# A private temporary directory, so tests that look for leftover temporary files do not see
+# those of tests running at the same time.
+mkdir -p "$work/tmp"
+export TMPDIR="$work/tmp"
 export FREECAD_USER_HOME="$work/home" SWEEP_TEST_OUT="$work" PYTHONDONTWRITEBYTECODE=1
 export SWEEP_FREECAD_LIB="$lib" QTWEBENGINE_DISABLE_SANDBOX=1
 SWEEP_TEST_DIR=$(cd "$(dirname "$script")" && pwd)
