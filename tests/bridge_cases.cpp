@@ -138,3 +138,22 @@ TEST_CASE("Varieties: the last stage's contributions add up to the divergence vo
     CHECK(area == Approx(r.report.area).epsilon(1e-6));
   }
 }
+
+TEST_CASE("Design variation: overriding a DH link length and a joint range recomputes the solid") {
+  const std::string path = SWEEP_SOURCE_DIR "/examples/chains/dh_point_two_revolutes_extrude.json";
+  const std::string text = sweep_test::read_text(path);
+  // as written: link 2 of length 2 turned a quarter turn around a unit circle, stroke 2
+  auto base = sweep::occt::run_sweep(sweep::parse_spec(text, SWEEP_SOURCE_DIR "/examples/chains"));
+  REQUIRE(base.report.ok());
+  CHECK(base.report.volume_brep == Approx(2 * 3 * M_PI).epsilon(1e-9));
+  // link 2 of length 3 (annulus sector 2..4 over a quarter turn, 3 pi, plus a disk, pi), stroke 3
+  auto varied = sweep::occt::run_sweep(sweep::parse_spec(text, SWEEP_SOURCE_DIR "/examples/chains",
+                                                         {"/motion/joints/1/a=3", "/motion/joints/0/range=[0,3]"}));
+  REQUIRE(varied.report.ok());
+  CHECK(varied.report.volume_brep == Approx(3 * 4 * M_PI).epsilon(1e-9));
+  // a half turn of link 2 instead: annulus sector 1..3 over a half turn (4 pi) plus a disk (pi), stroke 2
+  auto half = sweep::occt::run_sweep(
+      sweep::parse_spec(text, SWEEP_SOURCE_DIR "/examples/chains", {"/motion/joints/1/range=[0,180]"}));
+  REQUIRE(half.report.ok());
+  CHECK(half.report.volume_brep == Approx(2 * 5 * M_PI).epsilon(1e-9));
+}
