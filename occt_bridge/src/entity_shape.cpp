@@ -10,7 +10,12 @@
 #include <BRepPrimAPI_MakeTorus.hxx>
 #include <BRepTools.hxx>
 #include <BRep_Builder.hxx>
+#include <BRepBuilderAPI_MakeWire.hxx>
+#include <BRepGProp.hxx>
+#include <GProp_GProps.hxx>
 #include <GeomAPI_PointsToBSpline.hxx>
+#include <GeomLib_IsPlanarSurface.hxx>
+#include <Geom_Plane.hxx>
 #include <GeomAPI_PointsToBSplineSurface.hxx>
 #include <Geom_BSplineCurve.hxx>
 #include <Geom_BSplineSurface.hxx>
@@ -109,7 +114,94 @@ Handle(Geom_BSplineSurface) fit_surface(const EntitySpec& e, double tol, double*
   throw ComputeError("could not fit the surface entity");
 }
 
+/// A planar parametric surface as an exact plane face bounded by the images of its parameter
+/// domain's sides, less the sides that collapse to a point (poles) and the pairs that coincide
+/// (the two sides of a periodic parameter). Lines and circles among them are kept exact. Returns a
+/// null face when the surface is not planar or the boundary does not close.
+TopoDS_Face planar_face(const EntitySpec& e, const Handle(Geom_BSplineSurface)& fitted, double tol) {
+  GeomLib_IsPlanarSurface isp(fitted, 10 * tol);
+  if (!isp.IsPlanar()) return TopoDS_Face();
+  const double u0 = e.params[0].lo, u1 = e.params[0].hi, v0 = e.params[1].lo, v1 = e.params[1].hi;
+  const int n = 64;
+  // the four sides, counter-clockwise in (u, v)
+  auto side = [&](int k) {
+    std::vector<gp_Pnt> pts;
+    for (int i = 0; i <= n; ++i) {
+      const double t = double(i) / n;
+      double uv[2];
+      switch (k) {
+        case 0: uv[0] = u0 + (u1 - u0) * t; uv[1] = v0; break;
+        case 1: uv[0] = u1; uv[1] = v0 + (v1 - v0) * t; break;
+        case 2: uv[0] = u1 - (u1 - u0) * t; uv[1] = v1; break;
+        default: uv[0] = u0; uv[1] = v1 - (v1 - v0) * t; break;
+      }
+      pts.push_back(eval_xyz(e, uv));
+    }
+    return pts;
+  };
+  std::vector<std::vector<gp_Pnt>> sides;
+  for (int k = 0; k < 4; ++k) sides.push_back(side(k));
+  auto collapsed = [&](const std::vector<gp_Pnt>& p) {
+    for (const auto& q : p)
+      if (q.Distance(p[0]) > tol) return false;
+    return true;
+  };
+  auto same_reversed = [&](const std::vector<gp_Pnt>& a, const std::vector<gp_Pnt>& b) {
+    for (std::size_t i = 0; i < a.size(); ++i)
+      if (a[i].Distance(b[b.size() - 1 - i]) > tol) return false;
+    return true;
+  };
+  std::vector<bool> keep(4, true);
+  for (int k = 0; k < 4; ++k)
+    if (collapsed(sides[k])) keep[k] = false;
+  for (int k = 0; k < 2; ++k)
+    if (keep[k] && keep[k + 2] && same_reversed(sides[k], sides[k + 2])) keep[k] = keep[k + 2] = false;
+  BRepBuilderAPI_MakeWire wire;
+  for (int k = 0; k < 4; ++k) {
+    if (!keep[k]) continue;
+    TColgp_Array1OfPnt arr(1, n + 1);
+    for (int i = 0; i <= n; ++i) arr.SetValue(i + 1, sides[k][i]);
+    GeomAPI_PointsToBSpline fit(arr, 3, 8, GeomAbs_C2, 0.1 * tol);
+    if (!fit.IsDone()) return TopoDS_Face();
+    Handle(Geom_Curve) c(fit.Curve().get());
+    double f = c->FirstParameter(), l = c->LastParameter();
+    c = canonical_curve(c, f, l, tol);
+    BRepBuilderAPI_MakeEdge me(c, f, l);
+    if (!me.IsDone()) return TopoDS_Face();
+    wire.Add(me.Edge());
+    if (!wire.IsDone()) return TopoDS_Face();
+  }
+  if (!wire.IsDone() || !wire.Wire().Closed()) return TopoDS_Face();
+  Handle(Geom_Plane) plane = new Geom_Plane(isp.Plan());
+  BRepBuilderAPI_MakeFace mf(plane, wire.Wire(), true);
+  if (!mf.IsDone()) return TopoDS_Face();
+  TopoDS_Face face = mf.Face();
+  // the same area as the fitted face, or not used
+  GProp_GProps a, b;
+  BRepGProp::SurfaceProperties(face, a);
+  BRepGProp::SurfaceProperties(BRepBuilderAPI_MakeFace(fitted, tol).Face(), b);
+  if (std::abs(std::abs(a.Mass()) - b.Mass()) > 1e-6 * b.Mass()) return TopoDS_Face();
+  if (a.Mass() < 0) face.Reverse();
+  return face;
+}
+
 }  // namespace
+
+TopoDS_Shape sampled_points(const EntitySpec& e) {
+  TopoDS_Compound comp;
+  BRep_Builder b;
+  b.MakeCompound(comp);
+  const int n = e.params.size() == 1 ? 512 : 48;
+  const double u0 = e.params[0].lo, u1 = e.params[0].hi;
+  const double v0 = e.params.size() > 1 ? e.params[1].lo : 0, v1 = e.params.size() > 1 ? e.params[1].hi : 0;
+  for (int i = 0; i <= n; ++i)
+    for (int k = 0; k <= (e.params.size() > 1 ? n : 0); ++k) {
+      double uv[2] = {u0 + (u1 - u0) * i / n, v0 + (v1 - v0) * k / n};
+      b.Add(comp, BRepBuilderAPI_MakeVertex(eval_xyz(e, uv)).Vertex());
+    }
+  if (!e.placement.matrix().isIdentity(0.0)) return BRepBuilderAPI_Transform(comp, to_trsf(e.placement), true).Shape();
+  return comp;
+}
 
 TopoDS_Shape read_shape_file(const std::string& path, const std::string& pointer) {
   std::string ext = path.substr(path.find_last_of('.') + 1);
@@ -168,6 +260,8 @@ TopoDS_Shape entity_shape(const EntitySpec& e, double tol, double* fit_error) {
       BRepBuilderAPI_MakeFace mf(f, tol);
       if (!mf.IsDone()) throw ComputeError("could not build a face from the surface entity");
       s = mf.Face();
+      TopoDS_Face planar = planar_face(e, f, tol);
+      if (!planar.IsNull()) s = planar;
       break;
     }
     case EntityKind::Brep: {

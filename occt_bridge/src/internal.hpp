@@ -34,6 +34,9 @@ gp_Trsf to_trsf(const Eigen::Isometry3d& T);
 /// `tol` is the fitting tolerance for parametric kinds; `fit_error` receives the measured error.
 TopoDS_Shape entity_shape(const EntitySpec& e, double tol, double* fit_error);
 
+/// Points sampled on a parametric curve or surface entity (placed), for its extent.
+TopoDS_Shape sampled_points(const EntitySpec& e);
+
 /// A curve on a face where the motion's velocity is tangent to the face (n . v = 0), fitted to
 /// tolerance, with the number of fitted points.
 struct GrazingCurve {

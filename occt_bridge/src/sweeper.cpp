@@ -715,7 +715,10 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
   try {
     // Size and tolerance from the entity and the reach of the motion.
     double fit_err = 0;
-    TopoDS_Shape raw = entity_shape(spec.entity, 1e-9, &fit_err);
+    // Parametric curves and surfaces are fitted once the tolerance is known; their extent comes
+    // from a sampled stand-in (a polyline or a point cloud is enough for a bounding box).
+    const bool parametric = spec.entity.kind == EntityKind::Curve || spec.entity.kind == EntityKind::Surface;
+    TopoDS_Shape raw = parametric ? sampled_points(spec.entity) : entity_shape(spec.entity, 1e-9, &fit_err);
     auto extent = [](const TopoDS_Shape& s) {
       Bnd_Box b;
       BRepBndLib::Add(s, b);
@@ -753,10 +756,7 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
     rep.tol_requested = spec.tolerance > 0 ? spec.tolerance : 1e-6 * size;
     const double tol = rep.tol_requested;
     const double fit_tol = 0.01 * tol;
-    if (spec.entity.kind == EntityKind::Curve || spec.entity.kind == EntityKind::Surface) {
-      fit_err = 0;
-      raw = entity_shape(spec.entity, fit_tol, &fit_err);
-    }
+    if (parametric) raw = entity_shape(spec.entity, fit_tol, &fit_err);
     TopoDS_Shape shape = moved(raw, motion.home);
     rep.seconds["entity"] = since(t_start);
     std::unique_ptr<SignedDistance> sd = make_signed_distance(spec.entity);
