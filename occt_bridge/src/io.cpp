@@ -96,9 +96,22 @@ void write_shape(const Shape& shape, const std::string& path, double mesh_tolera
     const TopoDS_Shape& s = shape.shape;
     bool ok = true;
     if (e == "step" || e == "stp") {
+      // A STEP round trip can change a solid (the reader rebuilds trimming, and faces on spheres
+      // through their poles can come back as their complement): the file is read back and its
+      // volume compared with the solid's before it is kept.
       STEPControl_Writer w;
       Interface_Static::SetCVal("write.step.schema", "AP214IS");
       ok = w.Transfer(s, STEPControl_AsIs) == IFSelect_RetDone && w.Write(tmp.c_str()) == IFSelect_RetDone;
+      if (ok) {
+        GProp_GProps a;
+        BRepGProp::VolumeProperties(s, a, 1e-10);
+        if (std::abs(a.Mass()) > 0) {
+          const double back = file_volume(tmp);
+          if (std::abs(back - a.Mass()) > 1e-6 * std::abs(a.Mass()))
+            throw ComputeError("the STEP file does not read back to the solid's volume (" + std::to_string(back) +
+                               " vs " + std::to_string(a.Mass()) + "); write .brep instead");
+        }
+      }
     } else if (e == "brep") {
       ok = BRepTools::Write(s, tmp.c_str());
     } else {

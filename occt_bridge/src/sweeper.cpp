@@ -4,6 +4,7 @@
 #include <BRepAlgoAPI_Fuse.hxx>
 #include <BRepAlgoAPI_Splitter.hxx>
 #include <BRepBndLib.hxx>
+#include <BRepBuilderAPI_Copy.hxx>
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_Transform.hxx>
 #include <BRepCheck_Analyzer.hxx>
@@ -685,12 +686,19 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
     if (!fuse.IsDone() || fuse.HasErrors()) return stage_fail("the union of the swept cells failed");
     result = fuse.Shape();
   }
+  // Merging same-domain faces is cosmetic: it works on a copy (it can change the shapes it is
+  // given, and fail half-way, as on spheres through their poles), and its result is used only
+  // when it is a valid solid.
   try {
-    ShapeUpgrade_UnifySameDomain unify(result, true, true, true);
+    auto solids_valid = [](const TopoDS_Shape& sh) {
+      for (TopExp_Explorer ex(sh, TopAbs_SOLID); ex.More(); ex.Next())
+        if (!BRepCheck_Analyzer(ex.Current()).IsValid()) return false;
+      return BRepCheck_Analyzer(sh).IsValid();
+    };
+    ShapeUpgrade_UnifySameDomain unify(BRepBuilderAPI_Copy(result).Shape(), true, true, true);
     unify.Build();
-    result = unify.Shape();
+    if (solids_valid(unify.Shape())) result = unify.Shape();
   } catch (const Standard_Failure&) {
-    // merging same-domain faces is cosmetic: keep the union with its split faces
   }
   sec["build"] += since(t_build);
   if (cand_out) *cand_out = std::move(cand);
