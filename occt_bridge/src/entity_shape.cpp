@@ -85,33 +85,15 @@ Handle(Geom_BSplineCurve) fit_curve(const EntitySpec& e, double tol, double* err
 
 Handle(Geom_BSplineSurface) fit_surface(const EntitySpec& e, double tol, double* err) {
   const double u0 = e.params[0].lo, u1 = e.params[0].hi, v0 = e.params[1].lo, v1 = e.params[1].hi;
-  for (int n = 16; n <= 256; n *= 2) {
-    TColgp_Array2OfPnt pts(1, n + 1, 1, n + 1);
-    for (int i = 0; i <= n; ++i)
-      for (int j = 0; j <= n; ++j) {
-        double uv[2] = {u0 + (u1 - u0) * i / n, v0 + (v1 - v0) * j / n};
-        pts.SetValue(i + 1, j + 1, eval_xyz(e, uv));
-      }
-    GeomAPI_PointsToBSplineSurface fit;
-    fit.Init(pts, Approx_IsoParametric, 3, 8, GeomAbs_C2, 0.1 * tol);
-    if (!fit.IsDone()) continue;
-    Handle(Geom_BSplineSurface) s = fit.Surface();
-    // The parametrization is uniform in the index: map the spec parameters onto the knot range.
-    double a0, a1, b0, b1;
-    s->Bounds(a0, a1, b0, b1);
-    double e_max = 0;
-    for (int i = 0; i < 2 * n; ++i)
-      for (int j = 0; j < 2 * n; ++j) {
-        double fu = (i + 0.5) / (2 * n), fv = (j + 0.5) / (2 * n);
-        double uv[2] = {u0 + (u1 - u0) * fu, v0 + (v1 - v0) * fv};
-        e_max = std::max(e_max, s->Value(a0 + (a1 - a0) * fu, b0 + (b1 - b0) * fv).Distance(eval_xyz(e, uv)));
-      }
-    if (e_max <= tol || n == 256) {
-      *err = std::max(*err, e_max);
-      return s;
-    }
-  }
-  throw ComputeError("could not fit the surface entity");
+  auto exact = [&](double fu, double fv) {
+    double uv[2] = {u0 + (u1 - u0) * fu, v0 + (v1 - v0) * fv};
+    return eval_xyz(e, uv);
+  };
+  double e_max = 0;
+  Handle(Geom_BSplineSurface) s = fit_grid_surface(exact, tol, 0.1 * tol, 16, 256, &e_max);
+  if (s.IsNull()) throw ComputeError("could not fit the surface entity");
+  *err = std::max(*err, e_max);
+  return s;
 }
 
 /// A planar parametric surface as an exact plane face bounded by the images of its parameter

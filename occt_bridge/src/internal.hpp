@@ -1,5 +1,6 @@
 #pragma once
 // OCCT-side helpers shared by the bridge's translation units.
+#include <Geom_BSplineSurface.hxx>
 #include <Geom_Curve.hxx>
 #include <TopoDS_Edge.hxx>
 #include <TopoDS_Face.hxx>
@@ -8,6 +9,7 @@
 #include <gp_Pnt.hxx>
 #include <gp_Trsf.hxx>
 #include <gp_Vec.hxx>
+#include <functional>
 #include <vector>
 
 #include "occt_bridge/sweeper.hpp"
@@ -33,6 +35,13 @@ gp_Trsf to_trsf(const Eigen::Isometry3d& T);
 /// Solids for solid kinds, a face for `surface`, an edge for `curve`, a vertex for `point`.
 /// `tol` is the fitting tolerance for parametric kinds; `fit_error` receives the measured error.
 TopoDS_Shape entity_shape(const EntitySpec& e, double tol, double* fit_error);
+
+/// Fits a B-spline surface to exact(fu, fv), fu and fv fractions in [0, 1], on an (n+1)^2 grid, n
+/// doubling from n0 to nmax until the distance measured between grid points is at most tol
+/// (approximation tolerance approx_tol). The surface's parameters are uniform in the fractions.
+/// Returns null when no fit succeeds; *err receives the measured error of the surface returned.
+Handle(Geom_BSplineSurface) fit_grid_surface(const std::function<gp_Pnt(double, double)>& exact, double tol,
+                                             double approx_tol, int n0, int nmax, double* err);
 
 /// Points sampled on a parametric curve or surface entity (placed), for its extent.
 TopoDS_Shape sampled_points(const EntitySpec& e);

@@ -277,27 +277,8 @@ std::vector<TopoDS_Face> sweep_curve(const Handle(Geom_Curve)& c, double first, 
       Eigen::Vector3d x = j.transform(q0 + (q1 - q0) * fq) * to_eigen(p);
       return to_pnt(x);
     };
-    Handle(Geom_BSplineSurface) best;
     double err = 0;
-    for (int n = 12; n <= 96; n *= 2) {
-      TColgp_Array2OfPnt pts(1, n + 1, 1, n + 1);
-      for (int a = 0; a <= n; ++a)
-        for (int b = 0; b <= n; ++b) pts.SetValue(a + 1, b + 1, exact(double(a) / n, double(b) / n));
-      GeomAPI_PointsToBSplineSurface fit;
-      fit.Init(pts, Approx_IsoParametric, 3, 8, GeomAbs_C2, 0.05 * tol);
-      if (!fit.IsDone()) continue;
-      Handle(Geom_BSplineSurface) s = fit.Surface();
-      double a0, a1, b0, b1;
-      s->Bounds(a0, a1, b0, b1);
-      err = 0;
-      for (int a = 0; a < 2 * n; ++a)
-        for (int b = 0; b < 2 * n; ++b) {
-          double fs = (a + 0.5) / (2 * n), fq = (b + 0.5) / (2 * n);
-          err = std::max(err, s->Value(a0 + (a1 - a0) * fs, b0 + (b1 - b0) * fq).Distance(exact(fs, fq)));
-        }
-      best = s;
-      if (err <= tol) break;
-    }
+    Handle(Geom_BSplineSurface) best = fit_grid_surface(exact, tol, 0.05 * tol, 12, 96, &err);
     if (best.IsNull()) throw ComputeError("could not fit a helical swept face");
     *fit_error = std::max(*fit_error, err);
     double a0, a1, b0, b1;
@@ -305,6 +286,32 @@ std::vector<TopoDS_Face> sweep_curve(const Handle(Geom_Curve)& c, double first, 
     out.push_back(make_face(best, a0, a1, b0, b1, tol));
   }
   return out;
+}
+
+Handle(Geom_BSplineSurface) fit_grid_surface(const std::function<gp_Pnt(double, double)>& exact, double tol,
+                                             double approx_tol, int n0, int nmax, double* err) {
+  Handle(Geom_BSplineSurface) best;
+  for (int n = n0; n <= nmax; n *= 2) {
+    TColgp_Array2OfPnt pts(1, n + 1, 1, n + 1);
+    for (int a = 0; a <= n; ++a)
+      for (int b = 0; b <= n; ++b) pts.SetValue(a + 1, b + 1, exact(double(a) / n, double(b) / n));
+    GeomAPI_PointsToBSplineSurface fit;
+    fit.Init(pts, Approx_IsoParametric, 3, 8, GeomAbs_C2, approx_tol);
+    if (!fit.IsDone()) continue;
+    Handle(Geom_BSplineSurface) s = fit.Surface();
+    double a0, a1, b0, b1;
+    s->Bounds(a0, a1, b0, b1);
+    double e = 0;
+    for (int a = 0; a < 2 * n; ++a)
+      for (int b = 0; b < 2 * n; ++b) {
+        const double fu = (a + 0.5) / (2 * n), fv = (b + 0.5) / (2 * n);
+        e = std::max(e, s->Value(a0 + (a1 - a0) * fu, b0 + (b1 - b0) * fv).Distance(exact(fu, fv)));
+      }
+    best = s;
+    *err = e;
+    if (e <= tol) break;
+  }
+  return best;
 }
 
 }  // namespace sweep::occt
