@@ -47,7 +47,8 @@ TEST_CASE("Cases: every shared case reproduces its expected volume") {
 
 TEST_CASE("Examples: every example with an expected volume reproduces it") {
   auto files = sweep_test::json_files(SWEEP_SOURCE_DIR "/examples");
-  for (const auto& f : sweep_test::json_files(SWEEP_SOURCE_DIR "/examples/chains")) files.push_back(f);
+  for (const auto& f : sweep_test::json_files(SWEEP_SOURCE_DIR "/examples/chains"))
+    if (f.find("sphere_four_prismatic") == std::string::npos) files.push_back(f);  // no closed form: see below
   REQUIRE_FALSE(files.empty());
   for (const auto& f : files) {
     if (f.find("brep_box_hole") != std::string::npos) continue;  // needs its STEP file: see below
@@ -195,4 +196,19 @@ TEST_CASE("Paper 4.4: a point swept by three revolute joints, against an indepen
     REQUIRE(v.report.ok());
     CHECK(v.report.volume_brep == Approx(volume).epsilon(1e-7));
   }
+}
+
+TEST_CASE("Chains: a sphere moved by four prismatic joints agrees with Monte Carlo membership") {
+  // No closed form at hand: the certified membership test (branch and bound over the four joint
+  // values with the sphere's signed distance) is the independent reference.
+  sweep::Spec spec = sweep::load_spec(SWEEP_SOURCE_DIR "/examples/chains/sphere_four_prismatic.json");
+  sweep::occt::RunOptions opt;
+  opt.verify = true;
+  opt.mc_samples = 160000;  // runs of several joints use an eighth of it: 20000 samples
+  auto r = sweep::occt::run_sweep(spec, opt);
+  CAPTURE(r.report.to_json().dump());
+  REQUIRE(r.report.ok());
+  CHECK(r.report.closed);
+  CHECK(std::abs(r.report.volume_mc - r.report.volume_brep) < 4.5 * r.report.volume_mc_stderr);
+  CHECK(r.report.volume_divergence == Approx(r.report.volume_brep).epsilon(1e-9));
 }

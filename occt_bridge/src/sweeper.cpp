@@ -1,6 +1,7 @@
 // The single-stage sweep pipeline: candidate varieties -> arrangement -> cell classification ->
 // solid -> validation and report.
 #include <BOPAlgo_MakerVolume.hxx>
+#include <BRepAdaptor_Curve2d.hxx>
 #include <BRepAlgoAPI_Fuse.hxx>
 #include <BRepAlgoAPI_Splitter.hxx>
 #include <BRepBndLib.hxx>
@@ -424,7 +425,19 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
     const TopoDS_Face& f1 = TopoDS::Face(fl.First());
     const TopoDS_Face& f2 = TopoDS::Face(fl.Last());
     if (f1.IsSame(f2)) return false;
-    return BRep_Tool::HasContinuity(e, f1, f2) && BRep_Tool::Continuity(e, f1, f2) >= GeomAbs_G1;
+    if (!BRep_Tool::HasContinuity(e, f1, f2) || BRep_Tool::Continuity(e, f1, f2) < GeomAbs_G1) return false;
+    // ... unless the motion is tangent to the faces all along it: then it is a grazing curve that
+    // the faces' own tracing leaves to it (it lies on their borders).
+    BRepAdaptor_Curve2d pc(e, f1);
+    BRepAdaptor_Surface S(f1);
+    for (int m = 0; m <= 4; ++m) {
+      const gp_Pnt2d uv = pc.Value(pc.FirstParameter() + (pc.LastParameter() - pc.FirstParameter()) * m / 4.0);
+      BRepLProp_SLProps props(S, uv.X(), uv.Y(), 1, 1e-9);
+      if (!props.IsNormalDefined()) return true;
+      const Eigen::Vector3d v = j.velocity(to_eigen(props.Value()));
+      if (std::abs(to_eigen(gp_Vec(props.Normal())).dot(v)) > 1e-9 * (v.norm() + 1e-300)) return true;
+    }
+    return false;
   };
   for (int k = 1; k <= edges.Extent(); ++k) {
     TopoDS_Edge e = TopoDS::Edge(edges(k));
