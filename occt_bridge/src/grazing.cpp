@@ -199,8 +199,8 @@ std::vector<std::vector<UV>> trace(const Field& F, double ua, double ub, double 
   };
   auto walk = [&](int start, std::size_t slot) {
     std::vector<UV> chain{gr.pts[start]};
-    int prev = start, cur = gr.adj[start][slot];
-    mark(prev, cur);
+    int cur = gr.adj[start][slot];
+    mark(start, cur);
     chain.push_back(gr.pts[cur]);
     while (gr.adj[cur].size() == 2 && cur != start) {
       int nxt = -1;
@@ -208,7 +208,6 @@ std::vector<std::vector<UV>> trace(const Field& F, double ua, double ub, double 
         if (!used[cur][m]) { nxt = gr.adj[cur][m]; break; }
       if (nxt < 0) break;
       mark(cur, nxt);
-      prev = cur;
       cur = nxt;
       chain.push_back(gr.pts[cur]);
     }
@@ -283,7 +282,6 @@ std::vector<GrazingCurve> grazing_curves(const TopoDS_Face& face, const ScrewJoi
     Handle(Geom2d_Curve) pc = BRep_Tool::CurveOnSurface(e, face, f, l);
     if (pc.IsNull()) continue;
     const int n = 400;
-    UV prev;
     double gprev = 0;
     for (int k = 0; k <= n; ++k) {
       gp_Pnt2d q = pc->Value(f + (l - f) * k / n);
@@ -299,7 +297,6 @@ std::vector<GrazingCurve> grazing_curves(const TopoDS_Face& face, const ScrewJoi
         gp_Pnt2d r = pc->Value(f + (l - f) * (k - 1 + s) / n);
         boundary_roots.push_back(F.point(UV(r.X(), r.Y())));
       }
-      prev = cur;
       gprev = gc;
     }
   }

@@ -73,6 +73,10 @@ double divergence_volume(const TopoDS_Shape& solid);
 /// The same integral over one face, signed by its orientation.
 double face_divergence(const TopoDS_Face& face);
 
+/// The path of point x under a revolute or prismatic joint for q in [q0, q0 + T] (a circle arc
+/// about the axis, or a segment), or a null edge when x is within min_radius of the axis.
+TopoDS_Edge path_edge(const Eigen::Vector3d& x, const ScrewJoint& j, double q0, double T, double min_radius);
+
 /// True when the motion keeps a plane containing the curve (then written to `plane`): a plane
 /// perpendicular to a rotation axis, or one containing a translation direction.
 bool keeps_plane_of(const Handle(Geom_Curve)& c, double first, double last, const ScrewJoint& j, double size,

@@ -30,22 +30,17 @@
 #include "sweep/error.hpp"
 
 namespace sweep::occt {
-namespace {
 
-/// The path of point x under the joint for q in [q0, q0 + T] (a circle arc or a segment), or a
-/// null edge when x does not move.
-TopoDS_Edge path_edge(const Eigen::Vector3d& x, const ScrewJoint& j, double q0, double T, double size) {
+TopoDS_Edge path_edge(const Eigen::Vector3d& x, const ScrewJoint& j, double q0, double T, double min_radius) {
   if (j.type == JointType::Prismatic)
     return BRepBuilderAPI_MakeEdge(to_pnt(x + q0 * j.direction), to_pnt(x + (q0 + T) * j.direction)).Edge();
   Eigen::Vector3d foot = j.point + j.direction * j.direction.dot(x - j.point);
   double r = (x - foot).norm();
-  if (r < 1e-12 * size) return TopoDS_Edge();
+  if (r < min_radius) return TopoDS_Edge();
   gp_Ax2 ax(to_pnt(foot), gp_Dir(to_vec(j.direction)), gp_Dir(to_vec((x - foot) / r)));
   Handle(Geom_Circle) c = new Geom_Circle(ax, r);
   return BRepBuilderAPI_MakeEdge(c, q0, q0 + T).Edge();
 }
-
-}  // namespace
 
 bool keeps_plane_of(const Handle(Geom_Curve)& c, double first, double last, const ScrewJoint& j, double size,
                     gp_Pln* plane) {
@@ -106,7 +101,7 @@ std::vector<TopoDS_Face> planar_curve_sweep(const Handle(Geom_Curve)& c, double 
   tools.Append(e0);
   tools.Append(e1);
   for (double s : special) {
-    TopoDS_Edge pe = path_edge(to_eigen(c->Value(s)), j, 0.0, T, size);
+    TopoDS_Edge pe = path_edge(to_eigen(c->Value(s)), j, 0.0, T, 1e-12 * size);
     if (!pe.IsNull()) tools.Append(pe);
   }
   // A square of the plane around everything, split by the candidate edges.
@@ -150,7 +145,7 @@ std::vector<TopoDS_Face> planar_curve_sweep(const Handle(Geom_Curve)& c, double 
         found = true;
         // backward trajectory of the point meets the curve?
         Eigen::Vector3d x = to_eigen(S.Value(uv.X(), uv.Y()));
-        TopoDS_Edge traj = path_edge(j.transform(-T) * x, j, 0.0, T, size);
+        TopoDS_Edge traj = path_edge(j.transform(-T) * x, j, 0.0, T, 1e-12 * size);
         if (traj.IsNull()) {
           BRepExtrema_DistShapeShape d(BRepBuilderAPI_MakeVertex(to_pnt(x)).Vertex(), e0);
           inside = d.IsDone() && d.Value() < 1e-9 * size;

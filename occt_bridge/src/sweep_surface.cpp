@@ -92,24 +92,11 @@ std::vector<TopoDS_Face> planar_segment_sweep(const gp_Pnt& a, const gp_Pnt& b, 
       gp_Pnt p0 = p.Transformed(r0), q0 = q.Transformed(r0), p1 = p.Transformed(r1), q1 = q.Transformed(r1);
       BRepBuilderAPI_MakeWire w;
       w.Add(BRepBuilderAPI_MakeEdge(p0, q0).Edge());
-      auto arc = [&](const gp_Pnt& from, const gp_Pnt& to, double t) {
-        gp_Pnt ctr = to_pnt(j.point + j.direction * j.direction.dot(to_eigen(from) - j.point));
-        double r = ctr.Distance(from);
-        if (r < tol) return false;
-        gp_Ax2 ax(ctr, axis.Direction(), gp_Dir(gp_Vec(ctr, from)));
-        Handle(Geom_Circle) circ = new Geom_Circle(ax, r);
-        w.Add(BRepBuilderAPI_MakeEdge(circ, 0.0, t).Edge());
-        (void)to;
-        return true;
-      };
-      arc(q0, q1, t1 - t0);
+      const TopoDS_Edge outer = path_edge(to_eigen(q0), j, 0.0, t1 - t0, tol);
+      if (!outer.IsNull()) w.Add(outer);
       w.Add(BRepBuilderAPI_MakeEdge(q1, p1).Edge());
-      if (p0.Distance(to_pnt(j.point + j.direction * j.direction.dot(to_eigen(p0) - j.point))) > tol) {
-        gp_Pnt ctr = to_pnt(j.point + j.direction * j.direction.dot(to_eigen(p0) - j.point));
-        gp_Ax2 ax(ctr, axis.Direction(), gp_Dir(gp_Vec(ctr, p0)));
-        Handle(Geom_Circle) circ = new Geom_Circle(ax, ctr.Distance(p0));
-        w.Add(BRepBuilderAPI_MakeEdge(circ, 0.0, t1 - t0).Edge());
-      }
+      const TopoDS_Edge inner = path_edge(to_eigen(p0), j, 0.0, t1 - t0, tol);  // null at the axis
+      if (!inner.IsNull()) w.Add(inner);
       if (!w.IsDone()) throw ComputeError("could not build a planar swept face");
       BRepBuilderAPI_MakeFace mf(plane, w.Wire(), true);
       if (!mf.IsDone()) throw ComputeError("could not build a planar swept face");

@@ -221,15 +221,10 @@ TopoDS_Shape point_sweep(const TopoDS_Shape& body, const ScrewJoint& j, double T
   int n = 0;
   for (TopExp_Explorer ex(body, TopAbs_VERTEX); ex.More(); ex.Next()) {
     Eigen::Vector3d x = to_eigen(BRep_Tool::Pnt(TopoDS::Vertex(ex.Current())));
-    if (j.type == JointType::Revolute) {
-      Eigen::Vector3d foot = j.point + j.direction * j.direction.dot(x - j.point);
-      double r = (x - foot).norm();
-      if (r < 1e-12 * size) continue;
-      gp_Ax2 ax(to_pnt(foot), gp_Dir(to_vec(j.direction)), gp_Dir(to_vec((x - foot) / r)));
-      Handle(Geom_Circle) c = new Geom_Circle(ax, r);
-      bb.Add(comp, BRepBuilderAPI_MakeEdge(c, 0.0, T).Edge());
-    } else if (j.type == JointType::Prismatic) {
-      bb.Add(comp, BRepBuilderAPI_MakeEdge(to_pnt(x), to_pnt(x + T * j.direction)).Edge());
+    if (j.type != JointType::Helical) {
+      const TopoDS_Edge e = path_edge(x, j, 0.0, T, 1e-12 * size);
+      if (e.IsNull()) continue;
+      bb.Add(comp, e);
     } else {
       const int m = std::max(16, int(std::ceil(T / (M_PI / 32))));
       TColgp_Array1OfPnt pts(1, m + 1);
