@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "joints_cmd.hpp"
+#include "section_cmd.hpp"
 #include "occt_bridge/sweeper.hpp"
 #include "sweep/error.hpp"
 #include "sweep/spec.hpp"
@@ -24,10 +25,13 @@ const char* kUsage =
     "      compute the swept solid; OUT by extension: .step/.stp, .brep, .stl (binary), .off\n"
     "  check SPEC [--set PATH=VALUE]...\n"
     "      validate the spec only\n"
-    "  varieties SPEC [-o V.json] [--faces F.brep|F.step] [--set PATH=VALUE]...\n"
+    "  varieties SPEC [-o V.json] [--faces F.brep|F.step] [--svg F.svg] [--set PATH=VALUE]...\n"
     "      the boundary varieties of every stage: fixed and free parameters, the part on the final\n"
-    "      boundary and its volume contribution; --faces writes the last stage's candidate faces\n"
-    "      validate the spec only\n"
+    "      boundary and its volume contribution; --faces writes the last stage's candidate faces,\n"
+    "      --svg draws them (parallel projection, one colour per variety, legend)\n"
+    "  section SPEC --z Z1,Z2,... [--svg F.svg] [-o S.json] [--set PATH=VALUE]...\n"
+    "      cut the swept solid by the planes z = Z1, Z2, ...: area, loops and box of each section\n"
+    "      (JSON, also written to S.json with -o); --svg draws them side by side\n"
     "  joints ASSEMBLY.json [--json] [--dot G.dot] [--motion-for PART [--range NAME=lo,hi]...]\n"
     "      kinematic joint recognition\n"
     "  --help, --version\n"
@@ -35,7 +39,7 @@ const char* kUsage =
     "exit codes: 0 success, 2 invalid input, 3 computation failed or result not valid, 1 internal error\n";
 
 struct Args {
-  std::string spec, out, report, faces;
+  std::string spec, out, report, faces, svg;
   std::vector<std::string> sets;
   bool verify = false;
 };
@@ -54,6 +58,7 @@ Args parse_args(int argc, char** argv, bool allow_output) {
     else if (allow_output && s == "--report") a.report = value("--report");
     else if (allow_output && s == "--verify") a.verify = true;
     else if (allow_output && s == "--faces") a.faces = value("--faces");
+    else if (allow_output && s == "--svg") a.svg = value("--svg");
     else if (!s.empty() && s[0] == '-') throw sweep::InputError(s, "unknown option '" + s + "'");
     else if (a.spec.empty()) a.spec = s;
     else throw sweep::InputError(s, "unexpected argument '" + s + "'");
@@ -86,6 +91,7 @@ int cmd_check(int argc, char** argv) {
 
 int cmd_run(int argc, char** argv) {
   Args a = parse_args(argc, argv, true);
+  if (!a.svg.empty()) throw sweep::InputError("--svg", "--svg applies to varieties and section, not run");
   if (!a.out.empty() && !sweep::occt::supported_output(a.out))
     throw sweep::InputError("-o", "unsupported output extension in '" + a.out +
                                       "' (expected .step, .stp, .brep, .stl or .off)");
@@ -119,6 +125,7 @@ int cmd_varieties(int argc, char** argv) {
   Args a = parse_args(argc, argv, true);
   if (!a.faces.empty() && !sweep::occt::supported_output(a.faces))
     throw sweep::InputError("--faces", "unsupported extension in '" + a.faces + "' (expected .step, .stp or .brep)");
+  if (!a.svg.empty()) sweep_check_svg_path(a.svg, "--svg");
   sweep::Spec s = sweep::load_spec(a.spec, a.sets);
   sweep::occt::RunOptions opt;
   std::vector<sweep::occt::Variety> vars;
@@ -141,6 +148,7 @@ int cmd_varieties(int argc, char** argv) {
   out["volume_from_varieties"] = sum;
   const std::string text = out.dump(2) + "\n";
   if (r.report.ok() && faces && !a.faces.empty()) sweep::occt::write_shape(*faces, a.faces, 1e-3);
+  if (r.report.ok() && faces && !a.svg.empty()) sweep_write_varieties_svg(a.svg, s, *faces, vars);
   if (!a.out.empty()) {
     if (!write_text_atomic(a.out, text)) throw sweep::ComputeError("cannot write '" + a.out + "'");
   } else {
@@ -173,6 +181,7 @@ int main(int argc, char** argv) {
     if (cmd == "run") return cmd_run(argc, argv);
     if (cmd == "check") return cmd_check(argc, argv);
     if (cmd == "varieties") return cmd_varieties(argc, argv);
+    if (cmd == "section") return sweep_section_main(argc - 1, argv + 1);
     if (cmd == "joints") return sweep_joints_main(argc - 1, argv + 1);
     std::cerr << "sweepvol: unknown command '" << cmd << "'\n" << kUsage;
     return 2;
