@@ -132,6 +132,8 @@ int cmd_varieties(int argc, char** argv) {
   std::shared_ptr<const sweep::occt::Shape> faces;
   opt.varieties = &vars;
   opt.variety_faces = &faces;
+  std::vector<int> face_ids;
+  opt.variety_face_ids = &face_ids;
   if (isatty(STDERR_FILENO)) opt.progress = [](const std::string& line) { std::cerr << "sweepvol: " << line << "\n"; };
   sweep::occt::RunResult r = sweep::occt::run_sweep(s, opt);
   nlohmann::json out;
@@ -148,7 +150,7 @@ int cmd_varieties(int argc, char** argv) {
   out["volume_from_varieties"] = sum;
   const std::string text = out.dump(2) + "\n";
   if (r.report.ok() && faces && !a.faces.empty()) sweep::occt::write_shape(*faces, a.faces, 1e-3);
-  if (r.report.ok() && faces && !a.svg.empty()) sweep_write_varieties_svg(a.svg, s, *faces, vars);
+  if (r.report.ok() && faces && !a.svg.empty()) sweep_write_varieties_svg(a.svg, s, *faces, face_ids, vars);
   if (!a.out.empty()) {
     if (!write_text_atomic(a.out, text)) throw sweep::ComputeError("cannot write '" + a.out + "'");
   } else {

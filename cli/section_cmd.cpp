@@ -82,9 +82,7 @@ void sweep_check_svg_path(const std::string& path, const char* option) {
 }
 
 void sweep_write_varieties_svg(const std::string& path, const sweep::Spec& spec, const sweep::occt::Shape& faces,
-                               const std::vector<sweep::occt::Variety>& varieties) {
-  if (spec.motion.motion.joints.empty()) throw sweep::ComputeError("no joint to draw the varieties of");
-  const auto ids = sweep::occt::attribute_variety_faces(faces, varieties, spec.motion.motion.joints.front());
+                               const std::vector<int>& ids, const std::vector<sweep::occt::Variety>& varieties) {
   const std::string title = (spec.name.empty() ? std::string("sweep") : spec.name) + ": boundary varieties";
   sweep::occt::write_text_file(path, sweep::occt::varieties_svg(faces, ids, varieties, title));
 }

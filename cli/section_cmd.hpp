@@ -14,6 +14,7 @@ int sweep_section_main(int argc, char** argv);
 /// Refuses (InputError naming `option`) a drawing path that does not end in ".svg".
 void sweep_check_svg_path(const std::string& path, const char* option);
 
-/// Writes the drawing of the last stage's variety faces to `path` (atomically).
-void sweep_write_varieties_svg(const std::string& path, const sweep::Spec& spec,
-                               const sweep::occt::Shape& faces, const std::vector<sweep::occt::Variety>& varieties);
+/// Writes the drawing of the last stage's variety faces to `path` (atomically); `ids` gives each
+/// face's variety as an index into `varieties` (-1 when unknown).
+void sweep_write_varieties_svg(const std::string& path, const sweep::Spec& spec, const sweep::occt::Shape& faces,
+                               const std::vector<int>& ids, const std::vector<sweep::occt::Variety>& varieties);

@@ -359,10 +359,11 @@ std::vector<std::pair<int, std::vector<TopoDS_Face>>> revolve_pieces(const std::
 }
 
 /// One stage: the solid swept by `body` (a solid, or faces when dim == 2) under joint j for
-/// q in [0, T]. `sd`, when given, is the entity's signed distance and `sd_motion` the motion that
-/// carries the entity to this stage's swept set (for the certified membership test).
+/// q in [0, T]. `sd`, when given, is the entity's signed distance, or `pe` its parametric map, and
+/// `sd_motion` the motion that carries the entity to this stage's swept set (for the membership
+/// test independent of the B-rep).
 TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j, double T, const SignedDistance* sd,
-                         const Motion& sd_motion, double esize, double size, double tol, double fit_tol,
+                         const ParametricEntity* pe, const Motion& sd_motion, double esize, double size, double tol, double fit_tol,
                          double& fit_err, Report& rep, int stage, int joint_no, Candidates* cand_out) {
   Seconds sec{rep.seconds};
   auto stage_fail = [](const std::string& m) -> TopoDS_Shape { throw ComputeError(m); };
@@ -497,9 +498,22 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
       splitter.SetFuzzyValue(1e-9 * esize);
       splitter.Build();
       if (splitter.IsDone() && !splitter.HasErrors()) {
-        for (TopExp_Explorer ex(splitter.Shape(), TopAbs_FACE); ex.More(); ex.Next())
-          pieces.push_back(TopoDS::Face(ex.Current()));
-        split = true;
+        // The pieces must cover the face (a grazing curve on the face's border can leave the
+        // splitter with nothing); otherwise the face goes on whole.
+        std::vector<TopoDS_Face> split_faces;
+        double area = 0.0;
+        for (TopExp_Explorer ex(splitter.Shape(), TopAbs_FACE); ex.More(); ex.Next()) {
+          split_faces.push_back(TopoDS::Face(ex.Current()));
+          GProp_GProps g;
+          BRepGProp::SurfaceProperties(split_faces.back(), g);
+          area += g.Mass();
+        }
+        GProp_GProps g;
+        BRepGProp::SurfaceProperties(face, g);
+        if (!split_faces.empty() && std::abs(area - g.Mass()) <= 1e-6 * g.Mass()) {
+          pieces.insert(pieces.end(), split_faces.begin(), split_faces.end());
+          split = true;
+        }
       }
     }
     if (!split) pieces.push_back(face);
@@ -529,6 +543,7 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
   const bool solid_entity = dim == 3;
   auto member = [&](const Eigen::Vector3d& x) {
     if (sd) return in_swept_set(*sd, sd_motion, x, 1e-9 * size);
+    if (pe) return in_swept_image(*pe, sd_motion, x, 1e-9 * size, size);
     return swept_by_trajectory(body, solid_entity, j, T, x, 1e-9 * size);
   };
 
@@ -776,6 +791,7 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
     TopoDS_Shape shape = moved(raw, motion.home);
     rep.seconds["entity"] = since(t_start);
     std::unique_ptr<SignedDistance> sd = make_signed_distance(spec.entity);
+    std::unique_ptr<ParametricEntity> pe = ParametricEntity::make(spec.entity);
 
     // Stages, innermost joint first: each sweeps the previous stage's set.
     int dim = rep.dimension;
@@ -799,8 +815,10 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
         sd_motion.joints = {j};
         sd_motion.joints[0].hi = j.lo + T;
         const bool use_sd = sd && i == n - 1 && dim == 3;
+        // A surface entity's first stage: points are classified against its parametric map.
+        const bool use_pe = pe && i == n - 1 && dim == 2;
         Candidates stage_cands;
-        shape = solid_sweep(body, dim, j, T, use_sd ? sd.get() : nullptr, sd_motion, extent(body), size, tol, fit_tol,
+        shape = solid_sweep(body, dim, j, T, use_sd ? sd.get() : nullptr, use_pe ? pe.get() : nullptr, sd_motion, extent(body), size, tol, fit_tol,
                             fit_err, rep, n - i, i + 1, &stage_cands);
         if (i == 0) last_cands = std::move(stage_cands);
         else if (opt.varieties)
@@ -912,6 +930,7 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
           last_cands.vars[id].volume += vol * count / total;
         }
       }
+      const int offset = opt.varieties ? int(opt.varieties->size()) : 0;
       if (opt.varieties) opt.varieties->insert(opt.varieties->end(), last_cands.vars.begin(), last_cands.vars.end());
       if (opt.variety_faces) {
         TopoDS_Compound comp;
@@ -919,6 +938,10 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
         bb.MakeCompound(comp);
         for (const auto& f : last_cands.faces) bb.Add(comp, f);
         *opt.variety_faces = std::make_shared<Shape>(comp);
+        if (opt.variety_face_ids) {
+          opt.variety_face_ids->clear();
+          for (int id : last_cands.ids) opt.variety_face_ids->push_back(id >= 0 ? offset + id : -1);
+        }
       }
     }
 
@@ -944,8 +967,16 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
         mc = monte_carlo_volume(
             [&](const Eigen::Vector3d& x) { return swept_by_trajectory(body, rep.dimension == 3 && spec.entity.dimension() == 3, j, T, x, 1e-9 * size); },
             box, std::min<std::size_t>(opt.mc_samples, 20000), opt.mc_seed);
+      } else if (pe) {
+        Motion m = motion;
+        for (auto& jj : m.joints)
+          if (jj.type == JointType::Revolute && jj.hi - jj.lo > 2 * M_PI) jj.hi = jj.lo + 2 * M_PI;
+        const std::size_t samples = std::max<std::size_t>(opt.mc_samples / 8, 20000);
+        mc = monte_carlo_volume([&](const Eigen::Vector3d& x) { return in_swept_image(*pe, m, x, 1e-9 * size, size); },
+                                box, samples, opt.mc_seed);
       } else {
-        throw ComputeError("--verify needs a primitive solid entity for motions of several joints");
+        throw ComputeError("--verify needs a primitive solid, a point, a curve or a surface entity for motions of "
+                           "several joints");
       }
       rep.has_mc = true;
       rep.volume_mc = mc.volume;

@@ -139,6 +139,181 @@ bool in_swept_set(const SignedDistance& sd, const Motion& motion, const Vector3d
   return false;
 }
 
+std::unique_ptr<ParametricEntity> ParametricEntity::make(const EntitySpec& e) {
+  if (e.kind != EntityKind::Point && e.kind != EntityKind::Curve && e.kind != EntityKind::Surface) return nullptr;
+  auto p = std::make_unique<ParametricEntity>();
+  p->placement_ = e.placement;
+  if (e.kind == EntityKind::Point) {
+    p->at_ = e.at;
+    return p;
+  }
+  p->xyz_ = e.xyz;
+  for (const auto& r : e.params) {
+    p->lo_.push_back(r.lo);
+    p->hi_.push_back(r.hi);
+  }
+  // Largest Frobenius norm of the stacked Hessians on a grid over the parameter box.
+  const std::size_t k = p->lo_.size();
+  const int steps = k == 1 ? 512 : 96;
+  double hmax = 0.0;
+  std::vector<double> s(k), grad(k), hess(k * k);
+  const int total = k == 1 ? steps + 1 : (steps + 1) * (steps + 1);
+  for (int idx = 0; idx < total; ++idx) {
+    s[0] = p->lo_[0] + (p->hi_[0] - p->lo_[0]) * double(idx % (steps + 1)) / steps;
+    if (k == 2) s[1] = p->lo_[1] + (p->hi_[1] - p->lo_[1]) * double(idx / (steps + 1)) / steps;
+    double sum = 0.0;
+    for (const auto& f : p->xyz_) {
+      f.eval_d2(s.data(), grad.data(), hess.data());
+      for (double h : hess) sum += h * h;
+    }
+    hmax = std::max(hmax, std::sqrt(sum));
+  }
+  p->hessian_bound_ = 2.0 * hmax;
+  return p;
+}
+
+Vector3d ParametricEntity::eval(const double* s, Vector3d* jac) const {
+  if (lo_.empty()) return placement_ * at_;
+  Vector3d v;
+  double grad[2];
+  for (int c = 0; c < 3; ++c) {
+    v[c] = xyz_[c].eval_d1(s, grad);
+    if (jac)
+      for (std::size_t j = 0; j < lo_.size(); ++j) jac[j][c] = grad[j];
+  }
+  if (jac)
+    for (std::size_t j = 0; j < lo_.size(); ++j) jac[j] = placement_.linear() * jac[j];
+  return placement_ * v;
+}
+
+double ParametricEntity::move_bound(const double* c, const double* w) const {
+  if (lo_.empty()) return 0.0;
+  Vector3d jac[2];
+  eval(c, jac);
+  double first = 0.0, w2 = 0.0;
+  for (std::size_t j = 0; j < lo_.size(); ++j) {
+    first += jac[j].norm() * w[j];
+    w2 += w[j] * w[j];
+  }
+  return first + 0.5 * hessian_bound_ * w2;
+}
+
+namespace {
+
+/// Projected, damped Gauss-Newton for M(q) Gamma(s) = x over the boxes, from z (joints then
+/// entity parameters). True when the residual falls below `eps`.
+bool solve_image(const ParametricEntity& e, const Motion& motion, const Vector3d& x, std::vector<double> z,
+                 const std::vector<double>& lo, const std::vector<double>& hi, double eps) {
+  const std::size_t n = motion.dof(), k = z.size();
+  Eigen::MatrixXd J(3, k);
+  auto residual = [&](const std::vector<double>& zz, bool with_jacobian) {
+    Vector3d dg[2];
+    const Vector3d g = e.eval(zz.data() + n, with_jacobian ? dg : nullptr);
+    const Vector3d P = motion.transform(std::vector<double>(zz.begin(), zz.begin() + n)) * g;
+    if (with_jacobian) {
+      // dP/dq_i: joint i's velocity field, carried by the outer joints, at P.
+      Eigen::Isometry3d A = Eigen::Isometry3d::Identity();
+      for (std::size_t i = 0; i < n; ++i) {
+        const ScrewJoint& j = motion.joints[i];
+        J.col(i) = A.linear() * j.velocity(A.inverse() * P);
+        A = A * j.transform(zz[i]);
+      }
+      const Eigen::Matrix3d R = (A * motion.home).linear();
+      for (std::size_t m = 0; m + n < k; ++m) J.col(n + m) = R * dg[m];
+    }
+    return Vector3d(P - x);
+  };
+  Vector3d F = residual(z, true);
+  double f = F.norm();
+  for (int it = 0; it < 40; ++it) {
+    if (f < eps) return true;
+    const Eigen::Matrix3d JJ = J * J.transpose();
+    const double mu = 1e-12 * std::max(JJ.trace(), 1e-300);
+    const Eigen::VectorXd step = -J.transpose() * (JJ + mu * Eigen::Matrix3d::Identity()).ldlt().solve(F);
+    double t = 1.0;
+    bool improved = false;
+    for (int h = 0; h < 12 && !improved; ++h, t *= 0.5) {
+      std::vector<double> z2(k);
+      for (std::size_t i = 0; i < k; ++i) z2[i] = std::clamp(z[i] + t * step[i], lo[i], hi[i]);
+      const Vector3d F2 = residual(z2, false);
+      if (F2.norm() < f) {
+        z = std::move(z2);
+        improved = true;
+      }
+    }
+    if (!improved) return false;
+    F = residual(z, true);
+    f = F.norm();
+  }
+  return f < eps;
+}
+
+}  // namespace
+
+bool in_swept_image(const ParametricEntity& e, const Motion& motion, const Vector3d& x, double resolution,
+                    double scale) {
+  const std::size_t n = motion.dof(), m = e.num_params(), k = n + m;
+  SWEEP_ASSERT(n >= 1, "motion without joints");
+  std::vector<double> lo(k), hi(k);
+  for (std::size_t i = 0; i < n; ++i) {
+    lo[i] = motion.joints[i].lo;
+    hi[i] = motion.joints[i].hi;
+  }
+  for (std::size_t j = 0; j < m; ++j) {
+    lo[n + j] = e.lo(j);
+    hi[n + j] = e.hi(j);
+  }
+  const double eps = 1e-10 * scale;
+  struct Box { std::vector<double> lo, hi; };
+  std::vector<Box> stack{Box{lo, hi}};
+  std::vector<double> c(k), w(k);
+  std::size_t iterations = 0;
+  while (!stack.empty()) {
+    Box b = std::move(stack.back());
+    stack.pop_back();
+    for (std::size_t i = 0; i < k; ++i) {
+      c[i] = 0.5 * (b.lo[i] + b.hi[i]);
+      w[i] = 0.5 * (b.hi[i] - b.lo[i]);
+    }
+    // P(q, s) = E_1(q_1) ... E_n(q_n) home Gamma(s). With Q_i = E_{i+1} ... E_n home Gamma, the speed
+    // |dP/dq_i| is the distance of Q_i from joint i's axis (with the pitch); over the box Q_i moves
+    // at most by what the inner joints and the entity parameters move it. Innermost first.
+    double split_move = -1.0;
+    std::size_t split = 0;
+    for (std::size_t j = 0; j < m; ++j) {
+      double one[2] = {0.0, 0.0};
+      one[j] = w[n + j];
+      const double mv = e.move_bound(c.data() + n, one);
+      if (mv > split_move) { split_move = mv; split = n + j; }
+    }
+    double move = e.move_bound(c.data() + n, w.data() + n);
+    Vector3d Q = motion.home * e.eval(c.data() + n);
+    for (std::size_t i = n; i-- > 0;) {
+      const ScrewJoint& j = motion.joints[i];
+      double mv = w[i];
+      if (j.is_rotation()) {
+        const Vector3d rel = Q - j.point;
+        const double r = (rel - rel.dot(j.direction) * j.direction).norm() + move;
+        mv = w[i] * std::sqrt(r * r + j.pitch * j.pitch);
+      }
+      if (mv > split_move) { split_move = mv; split = i; }
+      move += mv;
+      Q = j.transform(c[i]) * Q;
+    }
+    const double gap = (Q - x).norm();
+    if (gap > move) continue;
+    if (gap < 0.5 * move && solve_image(e, motion, x, c, lo, hi, eps)) return true;
+    if (move < resolution || ++iterations > 200000) continue;
+    Box b2 = b;
+    const double mid = c[split];
+    b.hi[split] = mid;
+    b2.lo[split] = mid;
+    stack.push_back(std::move(b2));
+    stack.push_back(std::move(b));
+  }
+  return false;
+}
+
 MonteCarloResult monte_carlo_volume(const std::function<bool(const Vector3d&)>& inside,
                                     const Eigen::AlignedBox3d& box, std::size_t samples,
                                     std::uint64_t seed) {

@@ -60,14 +60,6 @@ std::string varieties_svg(const Shape& faces, const std::vector<int>& face_varie
                           const std::vector<Variety>& varieties, const std::string& title,
                           const VarietyDrawingOptions& options = {});
 
-/// The variety of each face of `faces` (explorer order) as far as it can be told from the public
-/// records alone: the final-stage varieties in `varieties` are matched to runs of consecutive faces
-/// with the same count and area (to 1e-9 relative), limit faces told apart by the sign of the
-/// normal velocity of `outermost` (the last stage's joint) on them. -1 where this is ambiguous
-/// (faces pruned from a variety, equal runs).
-std::vector<int> attribute_variety_faces(const Shape& faces, const std::vector<Variety>& varieties,
-                                         const ScrewJoint& outermost);
-
 /// Writes `text` to `path` through a temporary file in the same directory renamed into place, so
 /// no half-written file is left. @throws ComputeError when writing fails.
 void write_text_file(const std::string& path, const std::string& text);

@@ -46,6 +46,9 @@ struct RunOptions {
   std::vector<Variety>* varieties = nullptr;
   /// When set, receives the candidate faces of the last stage (a compound), for display.
   std::shared_ptr<const Shape>* variety_faces = nullptr;
+  /// When set with `variety_faces`, receives the variety of each of those faces (in explorer order)
+  /// as an index into `varieties` (or into the last stage's varieties when `varieties` is unset).
+  std::vector<int>* variety_face_ids = nullptr;
 };
 
 /// Report v1 (SPEC.md), plus `dimension` (3 solid, 2 surface, 1 curve, 0 point).

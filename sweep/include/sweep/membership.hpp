@@ -6,6 +6,7 @@
 /// over the joint box: a sub-box is discarded only when the distance at its centre exceeds what the
 /// motion can move a point within it.
 #include <Eigen/Geometry>
+#include <array>
 #include <functional>
 #include <memory>
 #include <random>
@@ -30,6 +31,39 @@ std::unique_ptr<SignedDistance> make_signed_distance(const EntitySpec& entity);
 /// length below which the search stops and decides by the sign at the best joint value.
 bool in_swept_set(const SignedDistance& sd, const Motion& motion, const Eigen::Vector3d& x,
                   double resolution);
+
+/// A point, curve or surface given by its parametric map Gamma(s) over a box of s (0, 1 or 2
+/// parameters), with its placement applied.
+class ParametricEntity {
+ public:
+  /// nullptr for entity kinds other than point, curve and surface.
+  static std::unique_ptr<ParametricEntity> make(const EntitySpec& entity);
+  std::size_t num_params() const { return lo_.size(); }
+  double lo(std::size_t j) const { return lo_[j]; }
+  double hi(std::size_t j) const { return hi_[j]; }
+  /// Gamma(s) and, when `jac` is given, its 3 x num_params() derivative (column-major 3-vectors).
+  Eigen::Vector3d eval(const double* s, Eigen::Vector3d* jac = nullptr) const;
+  /// Upper bound of |Gamma(s) - Gamma(c)| over |s_j - c_j| <= w_j: the first-order term at c plus a
+  /// second-order term from the largest Hessian norm, sampled on a grid over the parameter box and
+  /// doubled.
+  double move_bound(const double* c, const double* w) const;
+
+ private:
+  std::array<Expr, 3> xyz_;
+  Eigen::Vector3d at_ = Eigen::Vector3d::Zero();
+  Eigen::Isometry3d placement_ = Eigen::Isometry3d::Identity();
+  std::vector<double> lo_, hi_;
+  double hessian_bound_ = 0.0;
+};
+
+/// True when x is in the image of (q, s) -> M(q) Gamma(s) over the joint box and the parameter
+/// box. A branch and bound over both boxes discards a sub-box when the gap |M(c)^-1 x - Gamma(s_c)|
+/// exceeds what the motion and the map can move within it; membership is proved by a projected
+/// Gauss-Newton solve of M(q) Gamma(s) = x started in a surviving sub-box, converging to 1e-10 of
+/// `scale` inside the boxes. Sub-boxes smaller than `resolution` that no solve reaches count as
+/// outside (only points within about `resolution` of the boundary are at stake).
+bool in_swept_image(const ParametricEntity& entity, const Motion& motion, const Eigen::Vector3d& x,
+                    double resolution, double scale);
 
 /// Monte Carlo estimate of a volume from a membership test inside an axis-aligned box.
 struct MonteCarloResult {
