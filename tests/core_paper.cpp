@@ -43,7 +43,8 @@ double largest_gap(const Spec& spec, const std::function<Vector3d(const std::vec
   return worst;
 }
 
-double volume_of_box(const Spec& spec, Eigen::AlignedBox3d& box) {
+/// Extends `box` over sampled image points, 5 % larger on each side; returns the image's size.
+double sampled_box(const Spec& spec, Eigen::AlignedBox3d& box) {
   auto pe = sweep::ParametricEntity::make(spec.entity);
   const sweep::Motion& m = spec.motion.motion;
   std::mt19937_64 rng(5);
@@ -63,7 +64,7 @@ double volume_of_box(const Spec& spec, Eigen::AlignedBox3d& box) {
 sweep::MonteCarloResult image_volume(const Spec& spec, std::size_t samples) {
   auto pe = sweep::ParametricEntity::make(spec.entity);
   Eigen::AlignedBox3d box;
-  const double size = volume_of_box(spec, box);
+  const double size = sampled_box(spec, box);
   return sweep::monte_carlo_volume(
       [&](const Vector3d& x) { return sweep::in_swept_image(*pe, spec.motion.motion, x, 1e-9 * size, size); }, box,
       samples, 11);

@@ -953,13 +953,14 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
       box.extend(box.min() - Eigen::Vector3d::Constant(0.01 * size));
       box.extend(box.max() + Eigen::Vector3d::Constant(0.01 * size));
       MonteCarloResult mc;
+      // For the membership searches: a revolute joint beyond a full turn covers nothing new.
+      Motion m = motion;
+      for (auto& jj : m.joints)
+        if (jj.type == JointType::Revolute && jj.hi - jj.lo > 2 * M_PI) jj.hi = jj.lo + 2 * M_PI;
+      const std::size_t chain_samples = std::max<std::size_t>(opt.mc_samples / 8, 20000);
       if (sd) {
-        Motion m = motion;
-        for (auto& jj : m.joints)
-          if (jj.type == JointType::Revolute && jj.hi - jj.lo > 2 * M_PI) jj.hi = jj.lo + 2 * M_PI;
-        const std::size_t samples = n == 1 ? opt.mc_samples : std::max<std::size_t>(opt.mc_samples / 8, 20000);
         mc = monte_carlo_volume([&](const Eigen::Vector3d& x) { return in_swept_set(*sd, m, x, 1e-9 * size); }, box,
-                                samples, opt.mc_seed);
+                                n == 1 ? opt.mc_samples : chain_samples, opt.mc_seed);
       } else if (n == 1) {
         const ScrewJoint& j = motion.joints[0];
         const double T = std::min(j.hi - j.lo, j.type == JointType::Revolute ? 2 * M_PI : 1e300);
@@ -968,12 +969,8 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
             [&](const Eigen::Vector3d& x) { return swept_by_trajectory(body, rep.dimension == 3 && spec.entity.dimension() == 3, j, T, x, 1e-9 * size); },
             box, std::min<std::size_t>(opt.mc_samples, 20000), opt.mc_seed);
       } else if (pe) {
-        Motion m = motion;
-        for (auto& jj : m.joints)
-          if (jj.type == JointType::Revolute && jj.hi - jj.lo > 2 * M_PI) jj.hi = jj.lo + 2 * M_PI;
-        const std::size_t samples = std::max<std::size_t>(opt.mc_samples / 8, 20000);
         mc = monte_carlo_volume([&](const Eigen::Vector3d& x) { return in_swept_image(*pe, m, x, 1e-9 * size, size); },
-                                box, samples, opt.mc_seed);
+                                box, chain_samples, opt.mc_seed);
       } else {
         throw ComputeError("--verify needs a primitive solid, a point, a curve or a surface entity for motions of "
                            "several joints");

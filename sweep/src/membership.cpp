@@ -24,6 +24,21 @@ class Placed : public SignedDistance {
 };
 
 /// Orthonormal frame with `axis` as its third column.
+/// A box of the branch and bounds (joint values, then entity parameters).
+struct SearchBox {
+  std::vector<double> lo, hi;
+};
+
+/// Pushes the two halves of `b` split at coordinate `k`'s midpoint.
+void push_halves(std::vector<SearchBox>& stack, SearchBox b, std::size_t k) {
+  SearchBox b2 = b;
+  const double mid = 0.5 * (b.lo[k] + b.hi[k]);
+  b.hi[k] = mid;
+  b2.lo[k] = mid;
+  stack.push_back(std::move(b2));
+  stack.push_back(std::move(b));
+}
+
 Eigen::Matrix3d frame_of(const Vector3d& axis) {
   Vector3d z = axis.normalized();
   Vector3d t = std::abs(z.x()) < 0.9 ? Vector3d::UnitX() : Vector3d::UnitY();
@@ -106,15 +121,14 @@ bool in_swept_set(const SignedDistance& sd, const Motion& motion, const Vector3d
     const auto& j = motion.joints[i];
     speed[i] = j.is_rotation() ? lever + std::abs(j.pitch) + j.point.norm() : 1.0;
   }
-  struct Box { std::vector<double> lo, hi; };
-  std::vector<Box> stack;
-  Box root;
+  std::vector<SearchBox> stack;
+  SearchBox root;
   for (const auto& j : motion.joints) { root.lo.push_back(j.lo); root.hi.push_back(j.hi); }
   stack.push_back(root);
   std::vector<double> c(n);
   std::size_t iterations = 0;
   while (!stack.empty()) {
-    Box b = std::move(stack.back());
+    SearchBox b = std::move(stack.back());
     stack.pop_back();
     double move = 0.0, widest = -1.0;
     std::size_t split = 0;
@@ -129,12 +143,7 @@ bool in_swept_set(const SignedDistance& sd, const Motion& motion, const Vector3d
     if (d <= 0.0) return true;
     if (d > move) continue;
     if (move < resolution || ++iterations > 2000000) continue;  // within resolution of the boundary: outside
-    Box b2 = b;
-    const double mid = c[split];
-    b.hi[split] = mid;
-    b2.lo[split] = mid;
-    stack.push_back(std::move(b2));
-    stack.push_back(std::move(b));
+    push_halves(stack, std::move(b), split);
   }
   return false;
 }
@@ -186,14 +195,16 @@ Vector3d ParametricEntity::eval(const double* s, Vector3d* jac) const {
   return placement_ * v;
 }
 
-double ParametricEntity::move_bound(const double* c, const double* w) const {
+double ParametricEntity::move_bound(const double* c, const double* w, double* each) const {
   if (lo_.empty()) return 0.0;
   Vector3d jac[2];
   eval(c, jac);
   double first = 0.0, w2 = 0.0;
   for (std::size_t j = 0; j < lo_.size(); ++j) {
-    first += jac[j].norm() * w[j];
-    w2 += w[j] * w[j];
+    const double fj = jac[j].norm() * w[j], wj2 = w[j] * w[j];
+    if (each) each[j] = fj + 0.5 * hessian_bound_ * wj2;
+    first += fj;
+    w2 += wj2;
   }
   return first + 0.5 * hessian_bound_ * w2;
 }
@@ -264,12 +275,11 @@ bool in_swept_image(const ParametricEntity& e, const Motion& motion, const Vecto
     hi[n + j] = e.hi(j);
   }
   const double eps = 1e-10 * scale;
-  struct Box { std::vector<double> lo, hi; };
-  std::vector<Box> stack{Box{lo, hi}};
+  std::vector<SearchBox> stack{SearchBox{lo, hi}};
   std::vector<double> c(k), w(k);
   std::size_t iterations = 0;
   while (!stack.empty()) {
-    Box b = std::move(stack.back());
+    SearchBox b = std::move(stack.back());
     stack.pop_back();
     for (std::size_t i = 0; i < k; ++i) {
       c[i] = 0.5 * (b.lo[i] + b.hi[i]);
@@ -278,15 +288,12 @@ bool in_swept_image(const ParametricEntity& e, const Motion& motion, const Vecto
     // P(q, s) = E_1(q_1) ... E_n(q_n) home Gamma(s). With Q_i = E_{i+1} ... E_n home Gamma, the speed
     // |dP/dq_i| is the distance of Q_i from joint i's axis (with the pitch); over the box Q_i moves
     // at most by what the inner joints and the entity parameters move it. Innermost first.
+    double each[2] = {0.0, 0.0};
+    double move = e.move_bound(c.data() + n, w.data() + n, each);
     double split_move = -1.0;
     std::size_t split = 0;
-    for (std::size_t j = 0; j < m; ++j) {
-      double one[2] = {0.0, 0.0};
-      one[j] = w[n + j];
-      const double mv = e.move_bound(c.data() + n, one);
-      if (mv > split_move) { split_move = mv; split = n + j; }
-    }
-    double move = e.move_bound(c.data() + n, w.data() + n);
+    for (std::size_t j = 0; j < m; ++j)
+      if (each[j] > split_move) { split_move = each[j]; split = n + j; }
     Vector3d Q = motion.home * e.eval(c.data() + n);
     for (std::size_t i = n; i-- > 0;) {
       const ScrewJoint& j = motion.joints[i];
@@ -304,12 +311,7 @@ bool in_swept_image(const ParametricEntity& e, const Motion& motion, const Vecto
     if (gap > move) continue;
     if (gap < 0.5 * move && solve_image(e, motion, x, c, lo, hi, eps)) return true;
     if (move < resolution || ++iterations > 200000) continue;
-    Box b2 = b;
-    const double mid = c[split];
-    b.hi[split] = mid;
-    b2.lo[split] = mid;
-    stack.push_back(std::move(b2));
-    stack.push_back(std::move(b));
+    push_halves(stack, std::move(b), split);
   }
   return false;
 }

@@ -45,8 +45,8 @@ class ParametricEntity {
   Eigen::Vector3d eval(const double* s, Eigen::Vector3d* jac = nullptr) const;
   /// Upper bound of |Gamma(s) - Gamma(c)| over |s_j - c_j| <= w_j: the first-order term at c plus a
   /// second-order term from the largest Hessian norm, sampled on a grid over the parameter box and
-  /// doubled.
-  double move_bound(const double* c, const double* w) const;
+  /// doubled. When `each` is given, it receives the bound for each parameter varying alone.
+  double move_bound(const double* c, const double* w, double* each = nullptr) const;
 
  private:
   std::array<Expr, 3> xyz_;
