@@ -68,10 +68,13 @@ std::vector<TopoDS_Face> sweep_curve(const Handle(Geom_Curve)& c, double first, 
 std::vector<double> axial_breaks(const Handle(Geom_Curve)& c, double first, double last, const ScrewJoint& joint);
 
 /// Divergence-theorem volume (1/3) sum over faces of the integral of x . n, computed by Green's
-/// theorem in each face's parameter domain along its pcurves.
-double divergence_volume(const TopoDS_Shape& solid);
+/// theorem in each face's parameter domain along its pcurves; `area`, when given, receives the
+/// total area, integrated the same way at the same points.
+double divergence_volume(const TopoDS_Shape& solid, double* area = nullptr);
 /// The same integral over one face, signed by its orientation.
 double face_divergence(const TopoDS_Face& face);
+/// The area of one face by the same quadrature.
+double face_area(const TopoDS_Face& face);
 
 /// The path of point x under a revolute or prismatic joint for q in [q0, q0 + T] (a circle arc
 /// about the axis, or a segment), or a null edge when x is within min_radius of the axis.
