@@ -88,6 +88,17 @@ bool keeps_plane_of(const Handle(Geom_Curve)& c, double first, double last, cons
 std::vector<TopoDS_Face> planar_curve_sweep(const Handle(Geom_Curve)& c, double first, double last,
                                             const ScrewJoint& j, double T, const gp_Pln& plane, double size);
 
+/// The centre and radius of `body` when it is one whole sphere.
+bool sphere_of(const TopoDS_Shape& body, Eigen::Vector3d* centre, double* radius);
+/// True when the helix arc followed by point c under screw joint j over [0, T] has a reach larger
+/// than r + margin (its radius of curvature and the half lengths of its double normals and end
+/// chord all exceed it): then the balls of radius r along it bound a tube closed by two half balls.
+bool helix_reach_exceeds(const ScrewJoint& j, const Eigen::Vector3d& c, double T, double r, double margin);
+/// That solid (tube and half balls), the tube fitted within fit_tol, or a null shape when the fit or
+/// the build fails. `faces` receives the tube, the half ball at the start and the one at the end.
+TopoDS_Shape ball_screw_sweep(const Eigen::Vector3d& c, double r, const ScrewJoint& j, double T, double fit_tol,
+                              double size, double* fit_err, std::vector<TopoDS_Face>* faces);
+
 /// Keeps OCCT's translators from printing to stdout (stdout carries the report).
 void quiet_occt();
 
