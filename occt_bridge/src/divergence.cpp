@@ -8,6 +8,7 @@
 #include <TopExp_Explorer.hxx>
 #include <TopoDS.hxx>
 #include <cmath>
+#include <utility>
 
 #include "internal.hpp"
 
@@ -20,30 +21,34 @@ constexpr double kX[kGauss] = {-0.9602898564975363, -0.7966664774136267, -0.5255
 constexpr double kW[kGauss] = {0.1012285362903763, 0.2223810344533745, 0.3137066458778873, 0.3626837833783620,
                                0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763};
 
-double face_integral(const TopoDS_Face& face) {
+/// The integrals of x . n (volume, times 3) and of 1 (area) over the face, both with the face's
+/// parametrization's orientation (the first signed, the second not).
+std::pair<double, double> face_integrals(const TopoDS_Face& face) {
   BRepAdaptor_Surface S(face, false);
   double u0, u1, v0, v1;
   BRepTools::UVBounds(face, u0, u1, v0, v1);
   const double hu = (u1 - u0) / 12.0;
-  auto f = [&](double u, double v) {
-    gp_Pnt p;
-    gp_Vec du, dv;
-    S.D1(u, v, p, du, dv);
-    return gp_Vec(p.XYZ()).Dot(du.Crossed(dv));
-  };
-  auto P = [&](double u, double v) {
+  // P(u, v) = integral from u0 to u of f(s, v) ds, for both integrands at once
+  auto P = [&](double u, double v) -> std::pair<double, double> {
     const double len = u - u0;
-    if (len == 0) return 0.0;
+    if (len == 0) return {0.0, 0.0};
     const int m = std::max(1, int(std::ceil(std::abs(len) / hu)));
     const double h = len / m;
-    double s = 0;
+    double s = 0, a = 0;
     for (int k = 0; k < m; ++k) {
       const double c = u0 + (k + 0.5) * h;
-      for (int i = 0; i < kGauss; ++i) s += kW[i] * f(c + 0.5 * h * kX[i], v);
+      for (int i = 0; i < kGauss; ++i) {
+        gp_Pnt p;
+        gp_Vec du, dv;
+        S.D1(c + 0.5 * h * kX[i], v, p, du, dv);
+        const gp_Vec n = du.Crossed(dv);
+        s += kW[i] * gp_Vec(p.XYZ()).Dot(n);
+        a += kW[i] * n.Magnitude();
+      }
     }
-    return s * 0.5 * h;
+    return {s * 0.5 * h, a * 0.5 * h};
   };
-  double total = 0;
+  double total = 0, area = 0;
   TopoDS_Face fwd = TopoDS::Face(face.Oriented(TopAbs_FORWARD));
   for (TopExp_Explorer ex(fwd, TopAbs_EDGE); ex.More(); ex.Next()) {
     TopoDS_Edge e = TopoDS::Edge(ex.Current());
@@ -52,7 +57,7 @@ double face_integral(const TopoDS_Face& face) {
     const double sign = e.Orientation() == TopAbs_REVERSED ? -1.0 : 1.0;
     const int m = 16;
     const double h = (b - a) / m;
-    double s = 0;
+    double s = 0, sa = 0;
     for (int k = 0; k < m; ++k) {
       const double mid = a + (k + 0.5) * h;
       for (int i = 0; i < kGauss; ++i) {
@@ -60,28 +65,35 @@ double face_integral(const TopoDS_Face& face) {
         gp_Vec2d d;
         c.D1(mid + 0.5 * h * kX[i], q, d);
         if (d.Y() == 0) continue;
-        s += kW[i] * P(q.X(), q.Y()) * d.Y();
+        const auto [pv, pa] = P(q.X(), q.Y());
+        s += kW[i] * pv * d.Y();
+        sa += kW[i] * pa * d.Y();
       }
     }
     total += sign * s * 0.5 * h;
+    area += sign * sa * 0.5 * h;
   }
-  return total;
+  return {total, std::abs(area)};
 }
 
 }  // namespace
 
 double face_divergence(const TopoDS_Face& f) {
-  const double i = face_integral(f);
+  const double i = face_integrals(f).first;
   return (f.Orientation() == TopAbs_REVERSED ? -i : i) / 3.0;
 }
 
-double divergence_volume(const TopoDS_Shape& solid) {
-  double v = 0;
+double face_area(const TopoDS_Face& f) { return face_integrals(f).second; }
+
+double divergence_volume(const TopoDS_Shape& solid, double* area) {
+  double v = 0, a = 0;
   for (TopExp_Explorer ex(solid, TopAbs_FACE); ex.More(); ex.Next()) {
     const TopoDS_Face& f = TopoDS::Face(ex.Current());
-    const double i = face_integral(f);
+    const auto [i, fa] = face_integrals(f);
     v += f.Orientation() == TopAbs_REVERSED ? -i : i;
+    a += fa;
   }
+  if (area) *area = a;
   return v / 3.0;
 }
 

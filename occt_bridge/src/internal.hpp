@@ -68,10 +68,13 @@ std::vector<TopoDS_Face> sweep_curve(const Handle(Geom_Curve)& c, double first, 
 std::vector<double> axial_breaks(const Handle(Geom_Curve)& c, double first, double last, const ScrewJoint& joint);
 
 /// Divergence-theorem volume (1/3) sum over faces of the integral of x . n, computed by Green's
-/// theorem in each face's parameter domain along its pcurves.
-double divergence_volume(const TopoDS_Shape& solid);
+/// theorem in each face's parameter domain along its pcurves; `area`, when given, receives the
+/// total area, integrated the same way at the same points.
+double divergence_volume(const TopoDS_Shape& solid, double* area = nullptr);
 /// The same integral over one face, signed by its orientation.
 double face_divergence(const TopoDS_Face& face);
+/// The area of one face by the same quadrature.
+double face_area(const TopoDS_Face& face);
 
 /// The path of point x under a revolute or prismatic joint for q in [q0, q0 + T] (a circle arc
 /// about the axis, or a segment), or a null edge when x is within min_radius of the axis.
@@ -84,6 +87,17 @@ bool keeps_plane_of(const Handle(Geom_Curve)& c, double first, double last, cons
 /// The planar region swept by such a curve, as faces of that plane.
 std::vector<TopoDS_Face> planar_curve_sweep(const Handle(Geom_Curve)& c, double first, double last,
                                             const ScrewJoint& j, double T, const gp_Pln& plane, double size);
+
+/// The centre and radius of `body` when it is one whole sphere.
+bool sphere_of(const TopoDS_Shape& body, Eigen::Vector3d* centre, double* radius);
+/// True when the helix arc followed by point c under screw joint j over [0, T] has a reach larger
+/// than r + margin (its radius of curvature and the half lengths of its double normals and end
+/// chord all exceed it): then the balls of radius r along it bound a tube closed by two half balls.
+bool helix_reach_exceeds(const ScrewJoint& j, const Eigen::Vector3d& c, double T, double r, double margin);
+/// That solid (tube and half balls), the tube fitted within fit_tol, or a null shape when the fit or
+/// the build fails. `faces` receives the tube, the half ball at the start and the one at the end.
+TopoDS_Shape ball_screw_sweep(const Eigen::Vector3d& c, double r, const ScrewJoint& j, double T, double fit_tol,
+                              double size, double* fit_err, std::vector<TopoDS_Face>* faces);
 
 /// Keeps OCCT's translators from printing to stdout (stdout carries the report).
 void quiet_occt();

@@ -1,5 +1,6 @@
 // Faces swept by a curve under one screw joint.
 #include <BRepBuilderAPI_MakeFace.hxx>
+#include <Geom_SphericalSurface.hxx>
 #include <BRepBuilderAPI_Transform.hxx>
 #include <BRepPrimAPI_MakePrism.hxx>
 #include <BRepPrimAPI_MakeRevol.hxx>
@@ -102,6 +103,44 @@ std::vector<TopoDS_Face> planar_segment_sweep(const gp_Pnt& a, const gp_Pnt& b, 
       if (!mf.IsDone()) throw ComputeError("could not build a planar swept face");
       out.push_back(mf.Face());
     }
+  }
+  return out;
+}
+
+/// A circle whose axis meets the rotation axis at O lies on the sphere about O through it. A whole
+/// turn of an arc of it (its axial coordinate monotonic) sweeps the zone of that sphere between
+/// the latitudes of the arc's ends: returned as quarter-turn faces of one spherical surface, with
+/// exact iso-parametric edges, instead of general surfaces of revolution (which the arrangement
+/// intersects by marching). Empty when the circle lies on no such sphere.
+std::vector<TopoDS_Face> sphere_zone(const gp_Circ& circ, const gp_Pnt& a, const gp_Pnt& b, const gp_Ax1& axis,
+                                     double tol) {
+  const gp_Dir w = axis.Direction(), n = circ.Axis().Direction();
+  if (gp_Vec(n).Crossed(gp_Vec(w)).Magnitude() < 1e-9) return {};  // perpendicular to the axis: planar
+  // closest points of the circle's axis line C + s n and the rotation axis P + t w
+  const gp_Pnt C = circ.Location(), P = axis.Location();
+  const gp_Vec d(P, C);
+  const double nw = gp_Vec(n).Dot(gp_Vec(w)), den = 1 - nw * nw;
+  const double sn = (nw * d.Dot(gp_Vec(w)) - d.Dot(gp_Vec(n))) / den;
+  const gp_Pnt onC = C.Translated(gp_Vec(n) * sn);
+  const gp_Pnt O = P.Translated(gp_Vec(w) * gp_Vec(P, onC).Dot(gp_Vec(w)));
+  const double scale = 1 + circ.Radius() + d.Magnitude();
+  if (onC.Distance(O) > 1e-12 * scale) return {};
+  const double R = std::sqrt(circ.Radius() * circ.Radius() + C.SquareDistance(O));
+  auto latitude = [&](const gp_Pnt& x) {
+    return std::asin(std::clamp(gp_Vec(O, x).Dot(gp_Vec(w)) / R, -1.0, 1.0));
+  };
+  const double va = std::min(latitude(a), latitude(b)), vb = std::max(latitude(a), latitude(b));
+  if (vb - va < 1e-9) return {};
+  // a zone through a pole is left to the general revolve (merging faces around the poles of a
+  // spherical surface loops in ShapeUpgrade_UnifySameDomain)
+  if (va < -M_PI / 2 + 1e-7 || vb > M_PI / 2 - 1e-7) return {};
+  gp_Dir xd = w.IsParallel(gp::DX(), 1e-3) ? gp_Dir(gp_Vec(w).Crossed(gp::DY())) : gp_Dir(gp_Vec(w).Crossed(gp::DX()));
+  Handle(Geom_SphericalSurface) sphere = new Geom_SphericalSurface(gp_Ax3(O, w, xd), R);
+  std::vector<TopoDS_Face> out;
+  for (int k = 0; k < 4; ++k) {
+    BRepBuilderAPI_MakeFace mf(sphere, k * M_PI / 2, (k + 1) * M_PI / 2, va, vb, tol);
+    if (!mf.IsDone()) return {};
+    out.push_back(mf.Face());
   }
   return out;
 }
@@ -240,6 +279,10 @@ std::vector<TopoDS_Face> sweep_curve(const Handle(Geom_Curve)& c, double first, 
       return out;
     }
     const gp_Ax1 axis(to_pnt(j.point), gp_Dir(to_vec(j.direction)));
+    if (c->IsKind(STANDARD_TYPE(Geom_Circle)) && T >= 2 * M_PI - 1e-12) {
+      auto zone = sphere_zone(Handle(Geom_Circle)::DownCast(c)->Circ(), c->Value(first), c->Value(last), axis, tol);
+      if (!zone.empty()) return zone;
+    }
     TopoDS_Edge e = edge_of(c, first, last);
     for (int k = 0; k < pieces; ++k) {
       gp_Trsf r;

@@ -194,13 +194,16 @@ struct Candidates {
   }
   void add(int id, const std::vector<TopoDS_Face>& fs) {
     for (const auto& f : fs) {
-      faces.push_back(f);
-      ids.push_back(id);
-      vars[id].faces += 1;
       GProp_GProps g;
       BRepGProp::SurfaceProperties(f, g);
-      vars[id].area += g.Mass();
+      add(id, f, g.Mass());
     }
+  }
+  void add(int id, const TopoDS_Face& f, double area) {
+    faces.push_back(f);
+    ids.push_back(id);
+    vars[id].faces += 1;
+    vars[id].area += area;
   }
 };
 
@@ -384,6 +387,44 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
     return cand.add_variety(std::move(v));
   };
   const nlohmann::json qfree = {{qn, {0.0, T}}};
+  // A ball whose centre's helix has a reach above its radius sweeps a tube closed by two half
+  // balls: built directly, without an arrangement, when the build is valid and closed.
+  if (dim == 3 && j.type == JointType::Helical && j.pitch != 0) {
+    Eigen::Vector3d centre;
+    double radius = 0;
+    if (sphere_of(body, &centre, &radius) &&
+        helix_reach_exceeds(j, centre, T, radius, std::max(1e-6 * radius, 100 * tol))) {
+      double err = fit_err;
+      std::vector<TopoDS_Face> fs;
+      TopoDS_Shape direct = ball_screw_sweep(centre, radius, j, T, fit_tol, size, &err, &fs);
+      bool ok = !direct.IsNull() && BRepCheck_Analyzer(direct).IsValid();
+      if (ok) {
+        ShapeAnalysis_Shell sas;
+        sas.LoadShells(direct);
+        ok = !sas.CheckOrientedShells(direct, true) && !sas.HasFreeEdges();
+      }
+      if (ok) {
+        fit_err = err;
+        const int tube = variety("interior", "grazing curve (n . v = 0) on entity face 1 swept by joint " +
+                                                 std::to_string(joint_no) + " (a tube about the centre's helix)",
+                                 nlohmann::json::object(), qfree);
+        const int lo_id = variety("limit", "the entity at the start of joint " + std::to_string(joint_no) + "'s range",
+                                  {{qn, 0.0}}, nlohmann::json::object());
+        const int hi_id = variety("limit", "the entity at the end of joint " + std::to_string(joint_no) + "'s range",
+                                  {{qn, T}}, nlohmann::json::object());
+        cand.varieties += 1;
+        // (areas by the quadrature of the validation: cheaper on these high-degree faces)
+        cand.add(tube, fs[0], face_area(fs[0]));
+        cand.add(lo_id, fs[1], face_area(fs[1]));
+        cand.add(hi_id, fs[2], face_area(fs[2]));
+        rep.varieties += cand.varieties;
+        rep.cells += 1;
+        sec["varieties"] += since(t_cand);
+        if (cand_out) *cand_out = std::move(cand);
+        return direct;
+      }
+    }
+  }
   int edge_no = 0;
   // For a rotation (no pitch) short of a full turn, curve sweeps are collected first: pieces of
   // different curves that revolve into the same surface of revolution would give partly
@@ -872,13 +913,13 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
     }
     rep.closed = rep.closed && nsolids > 0;
     for (TopExp_Explorer ex(result, TopAbs_FACE); ex.More(); ex.Next()) ++rep.faces;
-    GProp_GProps gv, ga;
+    // OCCT's adaptive integration for the volume; the divergence volume, computed independently
+    // in the faces' parameter domains, also gives the area at the same quadrature points.
+    GProp_GProps gv;
     BRepGProp::VolumeProperties(result, gv, 1e-10);
-    BRepGProp::SurfaceProperties(result, ga, 1e-10);
     rep.volume_brep = gv.Mass();
-    rep.area = ga.Mass();
     set_centroid_and_box(rep, gv.CentreOfMass(), result);
-    rep.volume_divergence = divergence_volume(result);
+    rep.volume_divergence = divergence_volume(result, &rep.area);
     rep.tol_achieved = std::max(fit_err, max_tolerance(result));
     rep.seconds["validation"] = since(t_val);
 
