@@ -37,6 +37,10 @@ Two independent estimates are computed:
 Prints both values with their errors; the last line is the reference value and its relative error.
 Exits 1 if the two estimates disagree (classification mismatch or more than 4 standard errors).
 Usage: /usr/bin/python3 scripts/reference_volume_overlap.py [monte_carlo_points]
+           [--distance=R] [--pitch=P] [--turns=N]
+The options change the example's centre distance (4), pitch (1.5) and number of turns (2.5), as for
+examples/sphere_spring_overlap_close.json (distance 3, pitch 1.7, 3.25 turns); the method needs
+neighbouring turns to overlap and at least one and a half turns.
 """
 import math
 import sys
@@ -98,6 +102,11 @@ def union_length(zlo, zhi):
     return total
 
 
+def copies():
+    """The k whose copy's u-support [2 pi k - psi_max, 2 pi k + psi_max + THETA_MAX] can meet [0, 2 pi)."""
+    return np.arange(-1, int(math.ceil(THETA_MAX / (2.0 * math.pi))) + 2)
+
+
 def steady_height(rho):
     """Height of a slice of M_rho away from the ends of the helix: the copies k and k + 1 start to
     overlap (a kink of A(rho)) where it equals the pitch."""
@@ -135,7 +144,7 @@ def slice_volume(n_panels, n_gauss, n_phi):
     jac = np.sin(s)
     dphi = 2.0 * math.pi / n_phi
     phi = (np.arange(n_phi) + 0.5) * dphi
-    ks = np.arange(-1, 4)  # copies whose u-support [-psi_max, psi_max + 5 pi] meets [0, 2 pi)
+    ks = copies()  # copies whose u-support [-psi_max, psi_max + THETA_MAX] meets [0, 2 pi)
     total = 0.0
     for i in range(rho.size):
         u = phi[:, None] + 2.0 * math.pi * ks[None, :]
@@ -193,7 +202,7 @@ def monte_carlo(n_points, n_theta=360, chunk=20000):
         hits += int(np.count_nonzero(inside))
         # Same points through the slice intervals of part 1; points within 1e-9 of the boundary
         # (in squared distance) may legitimately differ.
-        u = phi[:, None] + 2.0 * math.pi * np.arange(-1, 4)[None, :]
+        u = phi[:, None] + 2.0 * math.pi * copies()[None, :]
         zlo, zhi = slice_intervals(rho[:, None], u)
         in_slices = np.any((zlo <= z[:, None]) & (z[:, None] <= zhi), axis=1)
         disagree += int(np.count_nonzero((inside != in_slices) & (np.abs(d2 - 1.0) > 1e-9)))
@@ -203,7 +212,20 @@ def monte_carlo(n_points, n_theta=360, chunk=20000):
 
 
 def main():
-    n_mc = int(sys.argv[1]) if len(sys.argv) > 1 else 1_000_000
+    global R_CENTRE, PITCH, THETA_MAX, H
+    args = [a for a in sys.argv[1:] if not a.startswith("--")]
+    for a in sys.argv[1:]:
+        if a.startswith("--distance="):
+            R_CENTRE = float(a.split("=", 1)[1])
+        elif a.startswith("--pitch="):
+            PITCH = float(a.split("=", 1)[1])
+        elif a.startswith("--turns="):
+            THETA_MAX = 2.0 * math.pi * float(a.split("=", 1)[1])
+        elif a.startswith("--"):
+            print(f"unknown option {a}", file=sys.stderr)
+            return 2
+    H = PITCH / (2.0 * math.pi)
+    n_mc = int(args[0]) if args else 1_000_000
     coarse = slice_volume(n_panels=24, n_gauss=8, n_phi=16384)
     fine = slice_volume(n_panels=48, n_gauss=8, n_phi=32768)
     err = abs(fine - coarse)
@@ -212,7 +234,7 @@ def main():
     print(f"monte carlo ({n_mc} points, seed {SEED}): {mc:.10g} +- {mc_se:.3g} (standard error, "
           f"relative {mc_se / mc:.3g}), {(mc - fine) / mc_se:+.2f} standard errors from the slice value; "
           f"membership test and slice intervals disagree on {disagree} points")
-    no_overlap = math.pi * 2.5 * math.hypot(2.0 * math.pi * R_CENTRE, PITCH) + 4.0 / 3.0 * math.pi
+    no_overlap = math.pi * THETA_MAX / (2.0 * math.pi) * math.hypot(2.0 * math.pi * R_CENTRE, PITCH) + 4.0 / 3.0 * math.pi
     print(f"(without overlap the tube formula would give {no_overlap:.10g})")
     print(f"reference volume {fine!r} relative error {err / fine:.3g}")
     return 0 if disagree == 0 and abs(mc - fine) < 4.0 * mc_se else 1

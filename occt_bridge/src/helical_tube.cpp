@@ -13,7 +13,12 @@
 // knots keep every face smooth (C8) inside: plain Gauss integration over a whole face, which OCCT's
 // default mass properties use (and FreeCAD's Shape.Volume with them), stays accurate; a rational
 // circle with its C1 knots was 0.45 % off there.
+#include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepBuilderAPI_MakeWire.hxx>
+#include <Geom2d_BSplineCurve.hxx>
+#include <Geom2d_Line.hxx>
+#include <TColgp_Array1OfPnt2d.hxx>
 #include <BRepBuilderAPI_MakeSolid.hxx>
 #include <BRepBuilderAPI_Sewing.hxx>
 #include <BRepCheck_Analyzer.hxx>
@@ -225,10 +230,23 @@ bool helix_reach_exceeds(const ScrewJoint& j, const Eigen::Vector3d& c, double T
   return lo - h * speed > 2 * (r + margin);
 }
 
-TopoDS_Shape ball_screw_sweep(const Eigen::Vector3d& c, double r, const ScrewJoint& j, double T, double fit_tol,
-                              double size, double* fit_err, std::vector<TopoDS_Face>* faces) {
+namespace {
+
+/// The tube of a ball's screw sweep and its two half balls, as B-spline surfaces: the tube with u
+/// along the motion ([0, T]) and v around the grazing circle ([0, 2 pi], starting at angle `phase`
+/// from an arbitrary normal), the half balls with u from the rim (0) to the pole (pi / 2) and the
+/// tube's v; their rims are the tube's end rows.
+struct Tube {
+  Handle(Geom_BSplineSurface) tube, back, front;
+  double error = 0;  ///< distance bound between the tube and the true tube
+  Eigen::Vector3d n0, b0, t0;  ///< the circle's frame at the start: v = 0 along n0, t0 the motion
+};
+
+bool build_tube(const Eigen::Vector3d& c, double r, const ScrewJoint& j, double T, double fit_tol, double phase,
+                Tube* out) {
   const Eigen::Vector3d t0 = j.velocity(c).normalized();
-  const Eigen::Vector3d n0 = t0.unitOrthogonal(), b0 = t0.cross(n0);
+  const Eigen::Vector3d m0 = t0.unitOrthogonal(), m1 = t0.cross(m0);
+  const Eigen::Vector3d n0 = std::cos(phase) * m0 + std::sin(phase) * m1, b0 = t0.cross(n0);
   // Polynomial B-splines of degree 9 with uniform knots: smooth enough (C8) that plain Gauss
   // integration over a whole face (as OCCT's default mass properties do) stays accurate.
   const int p = 9;
@@ -239,7 +257,7 @@ TopoDS_Shape ball_screw_sweep(const Eigen::Vector3d& c, double r, const ScrewJoi
                          p, spans, 1);
     if (r * circle.error <= 0.5 * fit_tol) break;
   }
-  if (r * circle.error > 0.5 * fit_tol) return {};
+  if (r * circle.error > 0.5 * fit_tol) return false;
   const int nc = int(circle.poles.rows());
   std::vector<Eigen::Vector3d> Q(nc);
   for (int k = 0; k < nc; ++k) Q[k] = c + r * (circle.poles(k, 0) * n0 + circle.poles(k, 1) * b0);
@@ -255,8 +273,11 @@ TopoDS_Shape ball_screw_sweep(const Eigen::Vector3d& c, double r, const ScrewJoi
     path = fit_bspline(helices, 3 * nc, T, p, spans, 1);
     if (path.error <= 0.5 * fit_tol) break;
   }
-  if (path.error > 0.5 * fit_tol) return {};
-  *fit_err = std::max(*fit_err, r * circle.error + path.error);
+  if (path.error > 0.5 * fit_tol) return false;
+  out->error = r * circle.error + path.error;
+  out->n0 = n0;
+  out->b0 = b0;
+  out->t0 = t0;
   const int np = int(path.poles.rows());
   // tube: u along the motion, v around the circle
   TColgp_Array2OfPnt P(1, np, 1, nc);
@@ -267,7 +288,7 @@ TopoDS_Shape ball_screw_sweep(const Eigen::Vector3d& c, double r, const ScrewJoi
   TColStd_Array1OfInteger um(1, int(path.knots.size())), vm(1, int(circle.knots.size()));
   knots_of(path, uk, um);
   knots_of(circle, vk, vm);
-  Handle(Geom_BSplineSurface) tube = new Geom_BSplineSurface(P, uk, vk, um, vm, p, p);
+  out->tube = new Geom_BSplineSurface(P, uk, vk, um, vm, p, p);
   // half balls on the tube's end rows (the exact images of the fitted circle)
   std::vector<Eigen::Vector3d> rim0(nc), rim1(nc);
   for (int k = 0; k < nc; ++k) {
@@ -275,28 +296,471 @@ TopoDS_Shape ball_screw_sweep(const Eigen::Vector3d& c, double r, const ScrewJoi
     rim1[k] = to_eigen(P.Value(np, k + 1));
   }
   const Eigen::Isometry3d MT = j.transform(T);
-  Handle(Geom_BSplineSurface) back = half_ball(c, r, -t0, rim0, circle, p);
-  Handle(Geom_BSplineSurface) front = half_ball(MT * c, r, MT.linear() * t0, rim1, circle, p);
-  const double tol = 1e-9 * size;
+  out->back = half_ball(c, r, -t0, rim0, circle, p);
+  out->front = half_ball(MT * c, r, MT.linear() * t0, rim1, circle, p);
+  return true;
+}
+
+/// Sews faces into one closed solid (null when they do not close).
+TopoDS_Shape sew_solid(const std::vector<TopoDS_Face>& fs, double tol) {
   BRepBuilderAPI_Sewing sew(tol);
+  for (const auto& f : fs) sew.Add(f);
+  sew.Perform();
+  TopoDS_Shape sewn = sew.SewedShape();
+  TopExp_Explorer sx(sewn, TopAbs_SHELL);
+  if (!sx.More()) return {};
+  const TopoDS_Shell shell = TopoDS::Shell(sx.Current());
+  sx.Next();
+  if (sx.More()) return {};
+  BRepBuilderAPI_MakeSolid ms(shell);
+  if (!ms.IsDone()) return {};
+  TopoDS_Solid solid = ms.Solid();
+  BRepLib::OrientClosedSolid(solid);
+  return solid;
+}
+
+}  // namespace
+
+TopoDS_Shape ball_screw_sweep(const Eigen::Vector3d& c, double r, const ScrewJoint& j, double T, double fit_tol,
+                              double size, double* fit_err, std::vector<TopoDS_Face>* faces) {
+  Tube tb;
+  if (!build_tube(c, r, j, T, fit_tol, 0.0, &tb)) return {};
+  *fit_err = std::max(*fit_err, tb.error);
+  const double tol = 1e-9 * size;
   std::vector<TopoDS_Face> fs;
-  for (const Handle(Geom_BSplineSurface)& srf : {tube, back, front}) {
+  for (const Handle(Geom_BSplineSurface)& srf : {tb.tube, tb.back, tb.front}) {
     double a0, a1, b0_, b1;
     srf->Bounds(a0, a1, b0_, b1);
     BRepBuilderAPI_MakeFace mf(srf, a0, a1, b0_, b1, tol);
     if (!mf.IsDone()) return {};
     fs.push_back(mf.Face());
-    sew.Add(mf.Face());
   }
-  sew.Perform();
-  TopoDS_Shape sewn = sew.SewedShape();
-  TopExp_Explorer sx(sewn, TopAbs_SHELL);
-  if (!sx.More()) return {};
-  BRepBuilderAPI_MakeSolid ms(TopoDS::Shell(sx.Current()));
-  if (!ms.IsDone()) return {};
-  TopoDS_Solid solid = ms.Solid();
-  BRepLib::OrientClosedSolid(solid);
+  TopoDS_Shape solid = sew_solid(fs, tol);
+  if (!solid.IsNull() && faces) *faces = fs;
+  return solid;
+}
+
+
+namespace {
+
+/// The path of a point under a screw motion, c(s) = M(s) c, with its first two derivatives.
+struct HelixPath {
+  Eigen::Vector3d o, e1, e2, w;  ///< c(s) = o + cos s e1 + sin s e2 + b s w
+  double b = 0;
+  HelixPath(const ScrewJoint& j, const Eigen::Vector3d& c) : w(j.direction), b(j.pitch) {
+    const Eigen::Vector3d d = c - j.point;
+    e1 = d - w * w.dot(d);
+    e2 = w.cross(e1);
+    o = c - e1;
+  }
+  double radius() const { return e1.norm(); }
+  Eigen::Vector3d pos(double s) const { return o + std::cos(s) * e1 + std::sin(s) * e2 + b * s * w; }
+  Eigen::Vector3d d1(double s) const { return -std::sin(s) * e1 + std::cos(s) * e2 + b * w; }
+  Eigen::Vector3d d2(double s) const { return -std::cos(s) * e1 - std::sin(s) * e2; }
+  double chord(double D) const {
+    const double R = radius();
+    return std::sqrt(2 * R * R * (1 - std::cos(D)) + b * b * D * D);
+  }
+  /// min over s in [lo, hi] of |x - c(s)|^2, the minimiser in *arg (sampled, then Newton
+  /// safeguarded by bisection on the derivative).
+  double min_dist2(const Eigen::Vector3d& x, double lo, double hi, double* arg) const {
+    const int n = 24;
+    double best = 1e300;
+    int kb = 0;
+    for (int k = 0; k <= n; ++k) {
+      const double d2 = (x - pos(lo + (hi - lo) * k / n)).squaredNorm();
+      if (d2 < best) best = d2, kb = k;
+    }
+    auto g = [&](double s) { return -2 * (x - pos(s)).dot(d1(s)); };
+    double a = lo + (hi - lo) * std::max(kb - 1, 0) / n, bb = lo + (hi - lo) * std::min(kb + 1, n) / n;
+    double s = lo + (hi - lo) * kb / n;
+    if (g(a) <= 0 && g(bb) >= 0) {
+      for (int it = 0; it < 60; ++it) {
+        const Eigen::Vector3d y = pos(s), y1 = d1(s);
+        const double gs = -2 * (x - y).dot(y1), hs = 2 * y1.squaredNorm() - 2 * (x - y).dot(d2(s));
+        (gs < 0 ? a : bb) = s;
+        double ns = s - gs / hs;
+        if (!(hs > 0) || ns <= a || ns >= bb) ns = 0.5 * (a + bb);
+        const bool done = std::abs(ns - s) <= 1e-14 * (1 + std::abs(s));
+        s = ns;
+        if (done || bb - a <= 1e-14 * (1 + std::abs(s))) break;
+      }
+      best = (x - pos(s)).squaredNorm();
+    }
+    if (arg) *arg = s;
+    return best;
+  }
+  /// The root of |x - c(s)|^2 = r^2 between s0 (where it is below) and s1 (where it is above).
+  double crossing(const Eigen::Vector3d& x, double r, double s0, double s1) const {
+    auto h = [&](double s) { return (x - pos(s)).squaredNorm() - r * r; };
+    double f0 = h(s0), f1 = h(s1);
+    if (f0 >= 0) return s0;
+    for (int it = 0; it < 100 && std::abs(s1 - s0) > 1e-15 * (1 + std::abs(s0)); ++it) {
+      // Illinois regula falsi
+      const double s = s1 - f1 * (s1 - s0) / (f1 - f0);
+      const double f = h(s);
+      if (f == 0) return s;
+      if ((f < 0) == (f0 < 0)) {
+        s0 = s, f0 = f;
+        f1 *= 0.5;
+      } else {
+        s1 = s, f1 = f;
+        f0 *= 0.5;
+      }
+    }
+    return 0.5 * (s0 + s1);
+  }
+};
+
+/// Root of a function increasing through zero on [a, b] (f(a) <= 0 <= f(b)), Illinois regula falsi.
+double root_between(const std::function<double(double)>& f, double a, double b) {
+  double fa = f(a), fb = f(b);
+  if (fa >= 0) return a;
+  if (fb <= 0) return b;
+  for (int it = 0; it < 100 && b - a > 1e-15 * (1 + std::abs(a)); ++it) {
+    const double x = b - fb * (b - a) / (fb - fa);
+    const double fx = f(x);
+    if (fx == 0) return x;
+    if (fx < 0) {
+      a = x, fa = fx;
+      fb *= 0.5;
+    } else {
+      b = x, fb = fx;
+      fa *= 0.5;
+    }
+  }
+  return 0.5 * (a + b);
+}
+
+/// An edge on surface S along the 2D curve c over [a, b], with its 3D curve built from it.
+TopoDS_Edge edge_on(const Handle(Geom_Surface)& S, const Handle(Geom2d_Curve)& c, double a, double b, double tol) {
+  BRepBuilderAPI_MakeEdge me(c, S, a, b);
+  if (!me.IsDone()) return {};
+  TopoDS_Edge e = me.Edge();
+  if (!BRepLib::BuildCurve3d(e, tol, GeomAbs_C1, 14, 200)) return {};
+  return e;
+}
+
+/// The straight edge from p to q in S's parameter plane.
+TopoDS_Edge segment_on(const Handle(Geom_Surface)& S, const gp_Pnt2d& p, const gp_Pnt2d& q, double tol) {
+  const double len = p.Distance(q);
+  if (len <= 0) return {};
+  Handle(Geom2d_Line) line = new Geom2d_Line(p, gp_Dir2d(q.X() - p.X(), q.Y() - p.Y()));
+  return edge_on(S, line, 0.0, len, tol);
+}
+
+/// A B-spline curve in a parameter plane fitted to f on [0, pi] (rows (x, y, 0)), within `tol` in
+/// that plane; null when no fit reaches it.
+Handle(Geom2d_BSplineCurve) fit_pcurve(const std::function<Eigen::RowVectorXd(double)>& f, double tol, double* err) {
+  const int p = 7;
+  // the error falls like spans^-(p + 1): from the error at 8 spans, the number that should reach
+  // tol (with a margin), then more if needed
+  Fit fit;
+  int spans = 8;
+  for (int attempt = 0; attempt < 6 && spans <= 256; ++attempt) {
+    fit = fit_bspline(f, 3, M_PI, p, spans, 1);
+    if (fit.error <= tol) break;
+    const double grow = std::pow(fit.error / tol, 1.0 / (p + 1));
+    spans = std::max(spans + 1, int(std::ceil(1.25 * spans * grow)));
+  }
+  if (!(fit.error <= tol)) return {};
+  *err = std::max(*err, fit.error);
+  TColgp_Array1OfPnt2d poles(1, int(fit.poles.rows()));
+  for (int i = 0; i < int(fit.poles.rows()); ++i) poles.SetValue(i + 1, gp_Pnt2d(fit.poles(i, 0), fit.poles(i, 1)));
+  TColStd_Array1OfReal knots(1, int(fit.knots.size()));
+  TColStd_Array1OfInteger mults(1, int(fit.knots.size()));
+  knots_of(fit, knots, mults);
+  return new Geom2d_BSplineCurve(poles, knots, mults, p);
+}
+
+}  // namespace
+
+TopoDS_Shape ball_screw_sweep_overlap(const Eigen::Vector3d& c, double r, const ScrewJoint& j, double T,
+                                      double fit_tol, double size, double* fit_err, std::vector<TopoDS_Face>* faces,
+                                      std::vector<int>* roles) {
+  if (j.type != JointType::Helical || j.pitch == 0) return {};
+  const HelixPath H(j, c);
+  const double R = H.radius(), b = j.pitch, margin = 1e-3 * r;
+  if (R <= 1e-9 * (r + std::abs(b))) return {};
+  // the tube is smooth (radius of curvature above r), a whole turn and a half is swept, balls
+  // half a turn apart or two turns and more apart are disjoint: only the neighbouring turns meet
+  if ((R * R + b * b) / R <= r + margin || T < 3 * M_PI) return {};
+  if (H.chord(M_PI) <= 2 * (r + margin)) return {};
+  {
+    const double speed = std::sqrt(R * R + b * b);
+    const int n = std::max(64, int(std::ceil((T - 3 * M_PI) / (0.01 * r / speed))));
+    const double h = (T - 3 * M_PI) / n;
+    for (int k = 0; k <= n; ++k)
+      if (H.chord(3 * M_PI + h * k) - h * speed <= 2 * (r + margin)) return {};
+  }
+  // Points of the grazing circle at the start covered by the next turn (sigma in (pi, 3 pi)) and
+  // by the previous one (sigma in (-3 pi, -pi)): each must be one arc, the two disjoint.
+  const Eigen::Vector3d t0 = j.velocity(c).normalized();
+  const Eigen::Vector3d m0 = t0.unitOrthogonal(), m1 = t0.cross(m0);
+  const double up_lo = M_PI, up_hi = 3 * M_PI, dn_lo = -3 * M_PI, dn_hi = -M_PI;
+  auto covered_up = [&](const Eigen::Vector3d& x) { return H.min_dist2(x, up_lo, up_hi, nullptr) - r * r; };
+  auto covered_dn = [&](const Eigen::Vector3d& x) { return H.min_dist2(x, dn_lo, dn_hi, nullptr) - r * r; };
+  const int N = 360;
+  std::vector<int> state(N);  // 1: covered from above, 2: from below
+  for (int k = 0; k < N; ++k) {
+    const double th = 2 * M_PI * k / N;
+    const Eigen::Vector3d x = c + r * (std::cos(th) * m0 + std::sin(th) * m1);
+    // and no ball within half a turn reaches it (the local tube is the boundary there)
+    if (H.min_dist2(x, 0.05, M_PI, nullptr) <= r * r || H.min_dist2(x, -M_PI, -0.05, nullptr) <= r * r) return {};
+    const bool u = covered_up(x) < 0, d = covered_dn(x) < 0;
+    if (u && d) return {};
+    state[k] = u ? 1 : d ? 2 : 0;
+  }
+  // one arc of each kind, separated by uncovered samples; the seam goes in the middle of the
+  // longer gap
+  int changes = 0, gap_start = -1, gap_len = 0;
+  for (int k = 0; k < N; ++k)
+    if (state[k] != state[(k + N - 1) % N]) ++changes;
+  if (changes != 4) return {};
+  for (int k = 0; k < N; ++k) {
+    if (state[k] != 0 || state[(k + N - 1) % N] == 0) continue;
+    int len = 0;
+    while (state[(k + len) % N] == 0) ++len;
+    if (len > gap_len) gap_len = len, gap_start = k;
+  }
+  if (gap_start < 0 || gap_len < 4) return {};
+  const double phase = 2 * M_PI * (gap_start + 0.5 * gap_len) / N;
+  Tube tb;
+  if (!build_tube(c, r, j, T, fit_tol, phase, &tb)) return {};
+  double err = tb.error;
+  auto start_row = [&](double v) { return to_eigen(tb.tube->Value(0.0, v)); };
+  // the arcs in the tube's v: [a1, a2] covered from above, [b1, b2] from below
+  auto arc = [&](int which, double* v1, double* v2) {
+    auto f = [&](double v) { return which == 1 ? covered_up(start_row(v)) : covered_dn(start_row(v)); };
+    const int M = 720;
+    int first = -1, last = -1;
+    for (int k = 1; k < M; ++k) {
+      const bool in = f(2 * M_PI * k / M) < 0;
+      if (in && first < 0) first = k;
+      if (in) last = k;
+    }
+    if (first <= 1 || last >= M - 1) return false;
+    const double h = 2 * M_PI / M;
+    *v1 = root_between([&](double v) { return -f(v); }, h * (first - 1), h * first);
+    *v2 = root_between(f, h * last, h * (last + 1));
+    return *v2 > *v1;
+  };
+  double a1, a2, b1, b2;
+  if (!arc(1, &a1, &a2) || !arc(2, &b1, &b2)) return {};
+  if (!(a2 < b1 || b2 < a1)) return {};
+  // Where the tube leaves the set covered by a neighbouring turn: for v in [a1, a2] the points at
+  // u <= T - a+(v) lie in the next turn (a+ the first time its ball reaches the start point), for
+  // v in [b1, b2] those at u >= -b-(v) in the previous one. At the arc ends the two crossing times
+  // meet; v = v1 + (v2 - v1)(1 - cos phi) / 2 makes the curve smooth in phi there.
+  const double speed = std::sqrt(R * R + b * b) + 2 * r;
+  const double ptol = 0.5 * fit_tol / speed;
+  double e2d = 0;
+  // (at an arc's end, `end`, the two crossing times are the time of least distance)
+  auto tongue_time = [&](double v, bool up, bool end = false) {
+    const Eigen::Vector3d x = start_row(v);
+    double sm;
+    const double d2 = up ? H.min_dist2(x, up_lo, up_hi, &sm) : H.min_dist2(x, dn_lo, dn_hi, &sm);
+    if (end || d2 >= r * r) return up ? T - sm : -sm;
+    return up ? T - H.crossing(x, r, sm, up_lo) : -H.crossing(x, r, sm, dn_hi);
+  };
+  auto tube_tongue = [&](double vs, double ve, bool up) {
+    return fit_pcurve(
+        [&](double ph) {
+          const double v = vs + (ve - vs) * 0.5 * (1 - std::cos(ph));
+          return Eigen::RowVector3d(tongue_time(v, up, ph == 0 || ph == M_PI), v, 0.0);
+        },
+        ptol, &e2d);
+  };
+  Handle(Geom2d_BSplineCurve) tongue_up = tube_tongue(a2, a1, true);
+  if (tongue_up.IsNull()) return {};
+  Handle(Geom2d_BSplineCurve) tongue_dn = tube_tongue(b1, b2, false);
+  if (tongue_dn.IsNull()) return {};
+  const double Ua1 = tongue_time(a1, true, true), Ua2 = tongue_time(a2, true, true);
+  const double Ub1 = tongue_time(b1, false, true), Ub2 = tongue_time(b2, false, true);
+  if (!(Ua1 > 0 && Ua2 > 0 && Ub1 < T && Ub2 < T)) return {};
+  // On the half balls: the part inside the neighbouring turn is bounded by the same curve as the
+  // tube's tongue (the ball meets that turn's tube there); its points are projected on the ball.
+  auto tube_point = [&](double v, bool up, bool end = false) {
+    return to_eigen(tb.tube->Value(tongue_time(v, up, end), v));
+  };
+  auto on_ball = [&](const Handle(Geom_BSplineSurface)& ball, const Eigen::Isometry3d& M, const Eigen::Vector3d& pole,
+                     const Eigen::Vector3d& y, double* u, double* v) {
+    // start from the angles about the ball's centre, then Gauss-Newton on the surface
+    const Eigen::Vector3d d = M.inverse() * y - c;
+    const double z = d.dot(pole);
+    *v = std::atan2(d.dot(tb.b0), d.dot(tb.n0));
+    if (*v < 0) *v += 2 * M_PI;
+    *u = std::atan2(z, (d - z * pole).norm());
+    for (int it = 0; it < 30; ++it) {
+      gp_Pnt P;
+      gp_Vec Su, Sv;
+      ball->D1(*u, *v, P, Su, Sv);
+      const Eigen::Vector3d e = to_eigen(P) - y, a = to_eigen(Su), bb = to_eigen(Sv);
+      Eigen::Matrix2d A;
+      A << a.dot(a), a.dot(bb), a.dot(bb), bb.dot(bb);
+      const Eigen::Vector2d step = A.ldlt().solve(Eigen::Vector2d(a.dot(e), bb.dot(e)));
+      *u -= step(0);
+      *v -= step(1);
+      if (step.norm() < 1e-13) break;
+    }
+    return (to_eigen(ball->Value(*u, *v)) - y).norm();
+  };
+  double proj_err = 0;
+  // the ball's tongue from the rim point at v = vs to the one at ve, along the tube's tongue
+  // (from tube v = ts to te, `up` for the tongue of the next turn)
+  auto ball_tongue = [&](const Handle(Geom_BSplineSurface)& ball, const Eigen::Isometry3d& M, const Eigen::Vector3d& pole,
+                         double vs, double ve, double ts, double te, bool up, double* umax) {
+    // which end of the tube's tongue is the rim point at vs
+    const Eigen::Vector3d rs = to_eigen(ball->Value(0.0, vs));
+    if ((tube_point(te, up, true) - rs).norm() < (tube_point(ts, up, true) - rs).norm()) std::swap(ts, te);
+    // the projections meet the rim points within the fitting error: that difference is spread
+    // linearly along the curve so that its ends are the rim points
+    double bu, bv;
+    on_ball(ball, M, pole, tube_point(ts, up, true), &bu, &bv);
+    const Eigen::Vector2d d0 = Eigen::Vector2d(0.0, vs) - Eigen::Vector2d(bu, bv);
+    on_ball(ball, M, pole, tube_point(te, up, true), &bu, &bv);
+    const Eigen::Vector2d d1 = Eigen::Vector2d(0.0, ve) - Eigen::Vector2d(bu, bv);
+    *umax = 0;
+    return fit_pcurve(
+        [&](double ph) {
+          const double v = ts + (te - ts) * 0.5 * (1 - std::cos(ph));
+          double pu, pv;
+          proj_err = std::max(proj_err, on_ball(ball, M, pole, tube_point(v, up, ph == 0 || ph == M_PI), &pu, &pv));
+          const Eigen::Vector2d uv = Eigen::Vector2d(pu, pv) + d0 * (1 - ph / M_PI) + d1 * (ph / M_PI);
+          *umax = std::max(*umax, uv(0));
+          return Eigen::RowVector3d(uv(0), uv(1), 0.0);
+        },
+        0.5 * fit_tol / (2 * r), &e2d);
+  };
+  const Eigen::Isometry3d MT = j.transform(T);
+  double umax_back = 0, umax_front = 0;
+  // the start ball is covered by the next turn: the tube's tongue over [b1, b2] lies on it
+  Handle(Geom2d_BSplineCurve) back_tongue =
+      ball_tongue(tb.back, Eigen::Isometry3d::Identity(), -tb.t0, a2, a1, b1, b2, false, &umax_back);
+  Handle(Geom2d_BSplineCurve) front_tongue = ball_tongue(tb.front, MT, tb.t0, b2, b1, a1, a2, true, &umax_front);
+  if (back_tongue.IsNull() || front_tongue.IsNull()) return {};
+  if (proj_err > 10 * tb.error + 1e-12 * size || umax_back >= 0.45 * M_PI || umax_front >= 0.45 * M_PI) return {};
+
+  // Guard: on grids over the tube and the half balls, the points that other balls of the sweep
+  // cover are those the tongues cut away (points close to a tongue's curve are not compared).
+  {
+    const double band = 1e-4 * r * r;
+    auto cover = [&](const Eigen::Vector3d& x, double lo1, double hi1, double lo2, double hi2) {
+      double d = 1e300;
+      if (hi1 > lo1) d = std::min(d, H.min_dist2(x, lo1, hi1, nullptr));
+      if (hi2 > lo2) d = std::min(d, H.min_dist2(x, lo2, hi2, nullptr));
+      return d - r * r;
+    };
+    for (int iu = 0; iu <= 40; ++iu)
+      for (int iv = 0; iv < 48; ++iv) {
+        const double U = T * iu / 40, v = 2 * M_PI * (iv + 0.5) / 48;
+        const double k = cover(to_eigen(tb.tube->Value(U, v)), std::max(0.0, U + M_PI), std::min(T, U + 3 * M_PI),
+                               std::max(0.0, U - 3 * M_PI), std::min(T, U - M_PI));
+        if (std::abs(k) < band) continue;
+        const bool cut = (v > a1 && v < a2 && U < tongue_time(v, true)) || (v > b1 && v < b2 && U > tongue_time(v, false));
+        if ((k < 0) != cut) return {};
+      }
+    auto inside = [](const std::vector<gp_Pnt2d>& poly, double x, double y) {
+      bool in = false;
+      for (std::size_t i = 0, n = poly.size(); i < n; ++i) {
+        const gp_Pnt2d& p = poly[i];
+        const gp_Pnt2d& q = poly[(i + 1) % n];
+        if ((p.Y() > y) != (q.Y() > y) && x < p.X() + (y - p.Y()) * (q.X() - p.X()) / (q.Y() - p.Y())) in = !in;
+      }
+      return in;
+    };
+    auto check_ball = [&](const Handle(Geom_BSplineSurface)& ball, const Handle(Geom2d_BSplineCurve)& tongue,
+                          double lo, double hi) {
+      std::vector<gp_Pnt2d> poly;
+      for (int i = 0; i <= 200; ++i) poly.push_back(tongue->Value(M_PI * i / 200));  // closed by the rim
+      for (int iu = 1; iu <= 16; ++iu)
+        for (int iv = 0; iv < 48; ++iv) {
+          const double u = 0.5 * M_PI * iu / 16, v = 2 * M_PI * (iv + 0.5) / 48;
+          const double k = cover(to_eigen(ball->Value(u, v)), lo, hi, 0, 0);
+          if (std::abs(k) < band) continue;
+          if ((k < 0) != inside(poly, u, v)) return false;
+        }
+      return true;
+    };
+    if (!check_ball(tb.back, back_tongue, up_lo, up_hi) || !check_ball(tb.front, front_tongue, T + dn_lo, T + dn_hi))
+      return {};
+  }
+
+  // Faces. Edges are built on each face from their parameter-plane curves; sewing joins them.
+  const double etol = std::max(1e-9 * size, 0.1 * fit_tol);
+  std::vector<TopoDS_Face> fs;
+  std::vector<int> rl;
+  auto face_of = [&](const Handle(Geom_Surface)& S, const std::vector<TopoDS_Edge>& edges) {
+    BRepBuilderAPI_MakeWire mw;
+    for (const auto& e : edges) {
+      if (e.IsNull()) return false;
+      mw.Add(e);
+      if (!mw.IsDone()) return false;
+    }
+    BRepBuilderAPI_MakeFace mf(S, mw.Wire(), true);
+    if (!mf.IsDone()) return false;
+    fs.push_back(mf.Face());
+    return true;
+  };
+  auto P = [](double x, double y) { return gp_Pnt2d(x, y); };
+  const double V = 2 * M_PI;
+  // The tube: its parameter rectangle [0, T] x [0, 2 pi] without the two tongues, in two faces split
+  // along v between the arcs (away from the seam), so that each line where the tube meets its next
+  // turn joins two different faces. Each face's boundary runs counterclockwise.
+  const double vm = a2 < b1 ? 0.5 * (a2 + b1) : 0.5 * (b2 + a1);
+  auto tube_face = [&](double vlo, double vhi) {
+    // a surface of its own: the faces share edges whose parameter lines differ (v = a2 here is v =
+    // b1 there), and edges with two parameter lines on one surface would read as seams
+    const Handle(Geom_Surface) tube = Handle(Geom_Surface)::DownCast(tb.tube->Copy());
+    std::vector<TopoDS_Edge> es{segment_on(tube, P(0, vlo), P(T, vlo), etol)};
+    double v = vlo;
+    if (b1 > vlo && b2 < vhi) {  // the previous turn's tongue hangs from u = T
+      es.push_back(segment_on(tube, P(T, v), P(T, b1), etol));
+      es.push_back(segment_on(tube, P(T, b1), P(Ub1, b1), etol));
+      es.push_back(edge_on(tube, tongue_dn, 0, M_PI, etol));
+      es.push_back(segment_on(tube, P(Ub2, b2), P(T, b2), etol));
+      v = b2;
+    }
+    es.push_back(segment_on(tube, P(T, v), P(T, vhi), etol));
+    es.push_back(segment_on(tube, P(T, vhi), P(0, vhi), etol));
+    v = vhi;
+    if (a1 > vlo && a2 < vhi) {  // the next turn's tongue stands on u = 0
+      es.push_back(segment_on(tube, P(0, v), P(0, a2), etol));
+      es.push_back(segment_on(tube, P(0, a2), P(Ua2, a2), etol));
+      es.push_back(edge_on(tube, tongue_up, 0, M_PI, etol));
+      es.push_back(segment_on(tube, P(Ua1, a1), P(0, a1), etol));
+      v = a1;
+    }
+    es.push_back(segment_on(tube, P(0, v), P(0, vlo), etol));
+    if (!face_of(tube, es)) return false;
+    rl.push_back(0);
+    return true;
+  };
+  if (!tube_face(0, vm) || !tube_face(vm, V)) return {};
+  // each half ball: a band from the rim to u_cut without its tongue, and the cap beyond
+  auto ball_faces = [&](const Handle(Geom_BSplineSurface)& ball, const Handle(Geom2d_BSplineCurve)& tongue,
+                        double v1, double v2, double umax, int role) {
+    const double uc = umax + 0.5 * (0.5 * M_PI - umax);
+    const Handle(Geom_Surface) S(ball);
+    if (!face_of(S, {segment_on(S, P(0, 0), P(uc, 0), etol), segment_on(S, P(uc, 0), P(uc, V), etol),
+                     segment_on(S, P(uc, V), P(0, V), etol), segment_on(S, P(0, V), P(0, v2), etol),
+                     edge_on(S, tongue, 0, M_PI, etol), segment_on(S, P(0, v1), P(0, 0), etol)}))
+      return false;
+    rl.push_back(role);
+    BRepBuilderAPI_MakeFace cap(S, uc, 0.5 * M_PI, 0, V, 1e-9 * size);
+    if (!cap.IsDone()) return false;
+    fs.push_back(cap.Face());
+    rl.push_back(role);
+    return true;
+  };
+  if (!ball_faces(tb.back, back_tongue, a1, a2, umax_back, 1)) return {};
+  if (!ball_faces(tb.front, front_tongue, b1, b2, umax_front, 2)) return {};
+  err += e2d * speed;
+  TopoDS_Shape solid = sew_solid(fs, std::max(1e-7 * size, 20 * err));
+  if (solid.IsNull()) return {};
+  *fit_err = std::max(*fit_err, err);
   if (faces) *faces = fs;
+  if (roles) *roles = rl;
   return solid;
 }
 

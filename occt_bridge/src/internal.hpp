@@ -1,5 +1,6 @@
 #pragma once
 // OCCT-side helpers shared by the bridge's translation units.
+#include <Bnd_Box.hxx>
 #include <Geom_BSplineSurface.hxx>
 #include <Geom_Curve.hxx>
 #include <TopoDS_Edge.hxx>
@@ -98,6 +99,18 @@ bool helix_reach_exceeds(const ScrewJoint& j, const Eigen::Vector3d& c, double T
 /// the build fails. `faces` receives the tube, the half ball at the start and the one at the end.
 TopoDS_Shape ball_screw_sweep(const Eigen::Vector3d& c, double r, const ScrewJoint& j, double T, double fit_tol,
                               double size, double* fit_err, std::vector<TopoDS_Face>* faces);
+
+/// The same sweep when the helix's neighbouring turns meet (and only those: balls half a turn or two
+/// turns apart are disjoint) over a range of at least one and a half turns: the tube trimmed where
+/// the next and the previous turn cover it, and the half balls trimmed where the turn after the start
+/// and the turn before the end cover them. Null when these conditions do not hold or a step fails.
+/// `roles` receives, per face, 0 for the tube, 1 for the start and 2 for the end.
+TopoDS_Shape ball_screw_sweep_overlap(const Eigen::Vector3d& c, double r, const ScrewJoint& j, double T,
+                                      double fit_tol, double size, double* fit_err, std::vector<TopoDS_Face>* faces,
+                                      std::vector<int>* roles);
+
+/// The axis-aligned box of a shape's vertices, edges and (trimmed) faces, without enlargement.
+Bnd_Box shape_box(const TopoDS_Shape& s);
 
 /// Keeps OCCT's translators from printing to stdout (stdout carries the report).
 void quiet_occt();

@@ -178,8 +178,7 @@ void set_centroid_and_box(Report& rep, const gp_Pnt& c, const TopoDS_Shape& resu
   rep.centroid[0] = c.X();
   rep.centroid[1] = c.Y();
   rep.centroid[2] = c.Z();
-  Bnd_Box bb;
-  BRepBndLib::AddOptimal(result, bb, false, false);
+  const Bnd_Box bb = shape_box(result);
   bb.Get(rep.bbox_min[0], rep.bbox_min[1], rep.bbox_min[2], rep.bbox_max[0], rep.bbox_max[1], rep.bbox_max[2]);
 }
 
@@ -192,19 +191,34 @@ struct Candidates {
     vars.push_back(std::move(v));
     return int(vars.size()) - 1;
   }
-  void add(int id, const std::vector<TopoDS_Face>& fs) {
+  /// Faces of variety `id`; `quadrature`: their areas come from the divergence quadrature
+  /// (cheaper than OCCT's integration on high-degree faces).
+  void add(int id, const std::vector<TopoDS_Face>& fs, bool quadrature = false) {
     for (const auto& f : fs) {
-      GProp_GProps g;
-      BRepGProp::SurfaceProperties(f, g);
-      add(id, f, g.Mass());
+      faces.push_back(f);
+      ids.push_back(id);
+      by_quadrature.push_back(quadrature);
+      vars[id].faces += 1;
     }
   }
-  void add(int id, const TopoDS_Face& f, double area) {
-    faces.push_back(f);
-    ids.push_back(id);
-    vars[id].faces += 1;
-    vars[id].area += area;
+  /// The varieties' candidate areas (only the varieties report needs them).
+  void compute_areas() {
+    for (auto& v : vars) v.area = 0;
+    for (std::size_t k = 0; k < faces.size(); ++k) {
+      double a = 0;
+      if (by_quadrature[k]) {
+        a = face_area(faces[k]);
+      } else {
+        GProp_GProps g;
+        BRepGProp::SurfaceProperties(faces[k], g);
+        a = g.Mass();
+      }
+      vars[ids[k]].area += a;
+    }
   }
+
+ private:
+  std::vector<bool> by_quadrature;
 };
 
 /// Accumulates seconds per step over stages.
@@ -392,11 +406,14 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
   if (dim == 3 && j.type == JointType::Helical && j.pitch != 0) {
     Eigen::Vector3d centre;
     double radius = 0;
-    if (sphere_of(body, &centre, &radius) &&
-        helix_reach_exceeds(j, centre, T, radius, std::max(1e-6 * radius, 100 * tol))) {
+    if (sphere_of(body, &centre, &radius)) {
       double err = fit_err;
       std::vector<TopoDS_Face> fs;
-      TopoDS_Shape direct = ball_screw_sweep(centre, radius, j, T, fit_tol, size, &err, &fs);
+      std::vector<int> roles{0, 1, 2};
+      TopoDS_Shape direct =
+          helix_reach_exceeds(j, centre, T, radius, std::max(1e-6 * radius, 100 * tol))
+              ? ball_screw_sweep(centre, radius, j, T, fit_tol, size, &err, &fs)
+              : ball_screw_sweep_overlap(centre, radius, j, T, fit_tol, size, &err, &fs, &roles);
       bool ok = !direct.IsNull() && BRepCheck_Analyzer(direct).IsValid();
       if (ok) {
         ShapeAnalysis_Shell sas;
@@ -413,10 +430,8 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
         const int hi_id = variety("limit", "the entity at the end of joint " + std::to_string(joint_no) + "'s range",
                                   {{qn, T}}, nlohmann::json::object());
         cand.varieties += 1;
-        // (areas by the quadrature of the validation: cheaper on these high-degree faces)
-        cand.add(tube, fs[0], face_area(fs[0]));
-        cand.add(lo_id, fs[1], face_area(fs[1]));
-        cand.add(hi_id, fs[2], face_area(fs[2]));
+        for (std::size_t k = 0; k < fs.size(); ++k)
+          cand.add(roles[k] == 0 ? tube : roles[k] == 1 ? lo_id : hi_id, {fs[k]}, true);
         rep.varieties += cand.varieties;
         rep.cells += 1;
         sec["varieties"] += since(t_cand);
@@ -861,9 +876,12 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
         Candidates stage_cands;
         shape = solid_sweep(body, dim, j, T, use_sd ? sd.get() : nullptr, use_pe ? pe.get() : nullptr, sd_motion, extent(body), size, tol, fit_tol,
                             fit_err, rep, n - i, i + 1, &stage_cands);
-        if (i == 0) last_cands = std::move(stage_cands);
-        else if (opt.varieties)
+        if (i == 0) {
+          last_cands = std::move(stage_cands);
+        } else if (opt.varieties) {
+          stage_cands.compute_areas();
           opt.varieties->insert(opt.varieties->end(), stage_cands.vars.begin(), stage_cands.vars.end());
+        }
         // a single solid travels on as itself (classifiers want a solid, not a compound of one)
         TopExp_Explorer sx(shape, TopAbs_SOLID);
         if (sx.More()) {
@@ -924,6 +942,7 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
     rep.seconds["validation"] = since(t_val);
 
     if (opt.varieties || opt.variety_faces) {
+      last_cands.compute_areas();
       // Each face of the result lies on the surface of the candidate it was cut from.
       std::map<const Geom_Surface*, int> by_surface;
       TopLoc_Location loc;
