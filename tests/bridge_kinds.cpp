@@ -59,3 +59,26 @@ TEST_CASE("Kinds: placement moves the entity before the motion") {
   CHECK(r.bbox_min[0] == Approx(10.0).margin(1e-7));
   CHECK(r.bbox_max[0] == Approx(11.0).margin(1e-7));
 }
+
+TEST_CASE("Kinds: a surface extruded along a direction in which it is a graph, and across one in which it is not") {
+  const std::string half_cylinder = R"js({"sweep": 1, "entity": {"kind": "surface",
+      "params": {"u": [0, 3.141592653589793], "v": [0, 1]}, "xyz": ["cos(u)", "sin(u)", "v"]},
+      "motion": {"kind": "axes", "joints": [{"type": "prismatic", "direction": )js";
+  // along y every line meets the half cylinder once: the solid between it and its copy 3 further,
+  // 2 x 1 x 3, sewn from the face, its copy and the sweeps of its four edges (no arrangement)
+  sweep::Spec graph = sweep::parse_spec(half_cylinder + R"([0, 1, 0], "range": [0, 3]}]}})", ".");
+  auto g = sweep::occt::run_sweep(graph);
+  INFO(g.report.to_json().dump());
+  REQUIRE(g.report.ok());
+  CHECK(g.report.volume_brep == Approx(6.0).epsilon(1e-7));
+  CHECK(g.report.faces == 6);
+  CHECK_FALSE(g.report.seconds.contains("arrangement"));
+  // along x, n . d changes sign: the general arrangement, and the region swept by the half circle
+  // along x has the area 3 + pi / 2 (a vertical slice at height y is [-s, s + 3], s = sqrt(1 - y^2))
+  sweep::Spec across = sweep::parse_spec(half_cylinder + R"([1, 0, 0], "range": [0, 3]}]}})", ".");
+  auto a = sweep::occt::run_sweep(across);
+  INFO(a.report.to_json().dump());
+  REQUIRE(a.report.ok());
+  CHECK(a.report.volume_brep == Approx(3 + M_PI / 2).epsilon(1e-7));
+  CHECK(a.report.seconds.contains("arrangement"));
+}

@@ -301,7 +301,8 @@ bool build_tube(const Eigen::Vector3d& c, double r, const ScrewJoint& j, double 
   return true;
 }
 
-/// Sews faces into one closed solid (null when they do not close).
+}  // namespace
+
 TopoDS_Shape sew_solid(const std::vector<TopoDS_Face>& fs, double tol) {
   BRepBuilderAPI_Sewing sew(tol);
   for (const auto& f : fs) sew.Add(f);
@@ -318,8 +319,6 @@ TopoDS_Shape sew_solid(const std::vector<TopoDS_Face>& fs, double tol) {
   BRepLib::OrientClosedSolid(solid);
   return solid;
 }
-
-}  // namespace
 
 TopoDS_Shape ball_screw_sweep(const Eigen::Vector3d& c, double r, const ScrewJoint& j, double T, double fit_tol,
                               double size, double* fit_err, std::vector<TopoDS_Face>* faces) {

@@ -440,6 +440,49 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
       }
     }
   }
+  // A face translated along a direction in which it is a graph: the face, its translate and the
+  // sweep of its boundary, sewn without an arrangement, when the result is valid and closed.
+  if (dim == 2 && j.type == JointType::Prismatic) {
+    TopExp_Explorer fx(body, TopAbs_FACE);
+    const TopoDS_Face face = fx.More() ? TopoDS::Face(fx.Current()) : TopoDS_Face();
+    if (fx.More()) fx.Next();
+    std::vector<GraphExtrusionFace> gfs;
+    TopoDS_Shape direct = !face.IsNull() && !fx.More() ? graph_extrusion(face, j.direction, T, size, &gfs)
+                                                       : TopoDS_Shape();
+    bool ok = !direct.IsNull() && BRepCheck_Analyzer(direct).IsValid();
+    if (ok) {
+      ShapeAnalysis_Shell sas;
+      sas.LoadShells(direct);
+      ok = !sas.CheckOrientedShells(direct, true) && !sas.HasFreeEdges();
+    }
+    if (ok) {
+      const int lo_id = variety("limit", "the entity at the start of joint " + std::to_string(joint_no) + "'s range",
+                                {{qn, 0.0}}, nlohmann::json::object());
+      const int hi_id = variety("limit", "the entity at the end of joint " + std::to_string(joint_no) + "'s range",
+                                {{qn, T}}, nlohmann::json::object());
+      std::map<int, int> edge_ids;
+      for (const auto& g : gfs) {
+        if (g.role < 0) {
+          cand.add(g.role == -1 ? lo_id : hi_id, {g.face});
+          continue;
+        }
+        if (!edge_ids.count(g.role)) {
+          nlohmann::json efree = qfree;
+          efree["s"] = {g.first, g.last};
+          edge_ids[g.role] = variety("boundary", "entity edge " + std::to_string(edge_ids.size() + 1) +
+                                                     " swept by joint " + std::to_string(joint_no),
+                                     nlohmann::json::object(), efree);
+          ++cand.varieties;
+        }
+        cand.add(edge_ids[g.role], {g.face});
+      }
+      rep.varieties += cand.varieties;
+      rep.cells += 1;
+      sec["varieties"] += since(t_cand);
+      if (cand_out) *cand_out = std::move(cand);
+      return direct;
+    }
+  }
   int edge_no = 0;
   // For a rotation (no pitch) short of a full turn, curve sweeps are collected first: pieces of
   // different curves that revolve into the same surface of revolution would give partly
