@@ -82,3 +82,10 @@ TEST_CASE("Kinds: a surface extruded along a direction in which it is a graph, a
   CHECK(a.report.volume_brep == Approx(3 + M_PI / 2).epsilon(1e-7));
   CHECK(a.report.seconds.contains("arrangement"));
 }
+
+TEST_CASE("Kinds: a ball extruded along (1, 0, 1) (an arrangement that builds no cell at one fuzzy value)") {
+  auto r = run(R"({"sweep": 1, "entity": {"kind": "sphere", "center": [0, 0, 0], "radius": 1},
+      "motion": {"kind": "axes", "joints": [{"type": "prismatic", "direction": [1, 0, 1], "range": [0, 2]}]}})");
+  CHECK(r.status == "ok");
+  CHECK(r.volume_brep == Approx(4 * M_PI / 3 + 2 * M_PI).epsilon(1e-9));
+}

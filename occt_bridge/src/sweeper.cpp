@@ -748,14 +748,22 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
 
   // Arrangement of all candidate faces.
   const auto t_arr = Clock::now();
-  BOPAlgo_MakerVolume mv;
   TopTools_ListOfShape args;
   for (const auto& f : cand.faces) args.Append(f);
-  mv.SetArguments(args);
-  mv.SetRunParallel(false);
-  mv.SetFuzzyValue(std::max(1e-7 * size, 10 * fit_err));
-  mv.SetNonDestructive(true);
-  mv.Perform();
+  // OCCT's arrangement can build no cell at one fuzzy value and every cell at a neighbouring one
+  // (a ball extruded along (1, 0, 1): none at 1e-6, all at 1e-7 and 1e-5): other values are tried
+  // when it builds none.
+  const double fuzzy = std::max(1e-7 * size, 10 * fit_err);
+  BOPAlgo_MakerVolume mv;
+  for (double factor : {1.0, 0.1, 10.0}) {
+    mv.Clear();
+    mv.SetArguments(args);
+    mv.SetRunParallel(false);
+    mv.SetFuzzyValue(fuzzy * factor);
+    mv.SetNonDestructive(true);
+    mv.Perform();
+    if (!mv.HasErrors() && TopExp_Explorer(mv.Shape(), TopAbs_SOLID).More()) break;
+  }
   if (const char* dump = std::getenv("SWEEP_DUMP_CANDIDATES")) {  // diagnostics: the arrangement's input
     TopoDS_Compound comp;
     BRep_Builder bb;
