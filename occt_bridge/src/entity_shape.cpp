@@ -15,7 +15,11 @@
 #include <GProp_GProps.hxx>
 #include <GeomAPI_PointsToBSpline.hxx>
 #include <GeomLib_IsPlanarSurface.hxx>
+#include <Geom_Circle.hxx>
 #include <Geom_Plane.hxx>
+#include <Geom_SphericalSurface.hxx>
+#include <gp_Ax3.hxx>
+#include <Eigen/Dense>
 #include <GeomAPI_PointsToBSplineSurface.hxx>
 #include <Geom_BSplineCurve.hxx>
 #include <Geom_BSplineSurface.hxx>
@@ -96,16 +100,18 @@ Handle(Geom_BSplineSurface) fit_surface(const EntitySpec& e, double tol, double*
   return s;
 }
 
-/// A planar parametric surface as an exact plane face bounded by the images of its parameter
-/// domain's sides, less the sides that collapse to a point (poles) and the pairs that coincide
-/// (the two sides of a periodic parameter). Lines and circles among them are kept exact. Returns a
-/// null face when the surface is not planar or the boundary does not close.
-TopoDS_Face planar_face(const EntitySpec& e, const Handle(Geom_BSplineSurface)& fitted, double tol) {
-  GeomLib_IsPlanarSurface isp(fitted, 10 * tol);
-  if (!isp.IsPlanar()) return TopoDS_Face();
+/// A piece of a parametric surface's boundary: a fitted curve, a line or a circle kept exact.
+struct BoundaryCurve {
+  Handle(Geom_Curve) curve;
+  double first = 0, last = 0;
+};
+
+/// The images of a parametric surface's domain sides, counter-clockwise in (u, v), less the sides
+/// that collapse to a point (poles) and the pairs that coincide (the two sides of a periodic
+/// parameter), each fitted within tol with lines and circles recognised. False when a fit fails.
+bool boundary_curves(const EntitySpec& e, double tol, std::vector<BoundaryCurve>* out) {
   const double u0 = e.params[0].lo, u1 = e.params[0].hi, v0 = e.params[1].lo, v1 = e.params[1].hi;
   const int n = 64;
-  // the four sides, counter-clockwise in (u, v)
   auto side = [&](int k) {
     std::vector<gp_Pnt> pts;
     for (int i = 0; i <= n; ++i) {
@@ -138,17 +144,40 @@ TopoDS_Face planar_face(const EntitySpec& e, const Handle(Geom_BSplineSurface)& 
     if (collapsed(sides[k])) keep[k] = false;
   for (int k = 0; k < 2; ++k)
     if (keep[k] && keep[k + 2] && same_reversed(sides[k], sides[k + 2])) keep[k] = keep[k + 2] = false;
-  BRepBuilderAPI_MakeWire wire;
+  out->clear();
   for (int k = 0; k < 4; ++k) {
     if (!keep[k]) continue;
     TColgp_Array1OfPnt arr(1, n + 1);
     for (int i = 0; i <= n; ++i) arr.SetValue(i + 1, sides[k][i]);
     GeomAPI_PointsToBSpline fit(arr, 3, 8, GeomAbs_C2, 0.1 * tol);
-    if (!fit.IsDone()) return TopoDS_Face();
-    Handle(Geom_Curve) c(fit.Curve().get());
-    double f = c->FirstParameter(), l = c->LastParameter();
-    c = canonical_curve(c, f, l, tol);
-    BRepBuilderAPI_MakeEdge me(c, f, l);
+    if (!fit.IsDone()) return false;
+    BoundaryCurve bc;
+    bc.curve = fit.Curve();
+    bc.first = bc.curve->FirstParameter();
+    bc.last = bc.curve->LastParameter();
+    bc.curve = canonical_curve(bc.curve, bc.first, bc.last, tol);
+    out->push_back(bc);
+  }
+  return true;
+}
+
+/// The area of the face the fitted surface makes over its whole domain.
+double fitted_area(const Handle(Geom_BSplineSurface)& fitted, double tol) {
+  GProp_GProps g;
+  BRepGProp::SurfaceProperties(BRepBuilderAPI_MakeFace(fitted, tol).Face(), g);
+  return g.Mass();
+}
+
+/// A planar parametric surface as an exact plane face bounded by its boundary curves. Returns a
+/// null face when the surface is not planar or the boundary does not close.
+TopoDS_Face planar_face(const EntitySpec& e, const Handle(Geom_BSplineSurface)& fitted, double tol) {
+  GeomLib_IsPlanarSurface isp(fitted, 10 * tol);
+  if (!isp.IsPlanar()) return TopoDS_Face();
+  std::vector<BoundaryCurve> curves;
+  if (!boundary_curves(e, tol, &curves)) return TopoDS_Face();
+  BRepBuilderAPI_MakeWire wire;
+  for (const auto& bc : curves) {
+    BRepBuilderAPI_MakeEdge me(bc.curve, bc.first, bc.last);
     if (!me.IsDone()) return TopoDS_Face();
     wire.Add(me.Edge());
     if (!wire.IsDone()) return TopoDS_Face();
@@ -159,12 +188,64 @@ TopoDS_Face planar_face(const EntitySpec& e, const Handle(Geom_BSplineSurface)& 
   if (!mf.IsDone()) return TopoDS_Face();
   TopoDS_Face face = mf.Face();
   // the same area as the fitted face, or not used
-  GProp_GProps a, b;
+  GProp_GProps a;
   BRepGProp::SurfaceProperties(face, a);
-  BRepGProp::SurfaceProperties(BRepBuilderAPI_MakeFace(fitted, tol).Face(), b);
-  if (std::abs(std::abs(a.Mass()) - b.Mass()) > 1e-6 * b.Mass()) return TopoDS_Face();
+  const double b = fitted_area(fitted, tol);
+  if (std::abs(std::abs(a.Mass()) - b) > 1e-6 * b) return TopoDS_Face();
   if (a.Mass() < 0) face.Reverse();
   return face;
+}
+
+/// A parametric surface that is a spherical cap (its points on one sphere within tol, its
+/// boundary one whole circle) as the exact cap of a spherical surface whose axis goes through the
+/// circle's centre. Returns a null face otherwise, or when the area differs from the fitted face's.
+TopoDS_Face spherical_cap_face(const EntitySpec& e, const Handle(Geom_BSplineSurface)& fitted, double tol) {
+  // the sphere through sampled points (algebraic least squares), then the largest distance to it
+  const int n = 16;
+  std::vector<gp_Pnt> pts;
+  for (int i = 0; i <= n; ++i)
+    for (int k = 0; k <= n; ++k) {
+      const double uv[2] = {e.params[0].lo + (e.params[0].hi - e.params[0].lo) * (i + 0.37 * (i < n)) / n,
+                            e.params[1].lo + (e.params[1].hi - e.params[1].lo) * (k + 0.61 * (k < n)) / n};
+      pts.push_back(eval_xyz(e, uv));
+    }
+  Eigen::MatrixXd A(pts.size(), 4);
+  Eigen::VectorXd rhs(pts.size());
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    const gp_Pnt& p = pts[i];
+    A.row(i) << p.X(), p.Y(), p.Z(), 1.0;
+    rhs(i) = -(p.X() * p.X() + p.Y() * p.Y() + p.Z() * p.Z());
+  }
+  const Eigen::Vector4d sol = A.colPivHouseholderQr().solve(rhs);
+  Eigen::Vector3d c = -0.5 * sol.head<3>();
+  if (!(c.squaredNorm() - sol(3) > 0)) return TopoDS_Face();
+  std::vector<BoundaryCurve> curves;
+  if (!boundary_curves(e, tol, &curves) || curves.size() != 1) return TopoDS_Face();
+  Handle(Geom_Circle) rim = Handle(Geom_Circle)::DownCast(curves[0].curve);
+  if (rim.IsNull() || std::abs(curves[0].last - curves[0].first - 2 * M_PI) > 1e-9) return TopoDS_Face();
+  // The cap's axis is the rim's normal (the circle through exact points is accurate to rounding;
+  // the fitted centre is not quite): the centre goes on the rim's axis, the radius through the rim.
+  const Eigen::Vector3d m = to_eigen(rim->Location()), axis = to_eigen(gp_Vec(rim->Axis().Direction()));
+  c = m + axis * (c - m).dot(axis);
+  const double R = (to_eigen(rim->Value(0.0)) - c).norm();
+  for (const auto& p : pts)
+    if (std::abs((to_eigen(p) - c).norm() - R) > tol) return TopoDS_Face();
+  const Eigen::Vector3d a = (m - c).dot(axis) >= 0 ? axis : Eigen::Vector3d(-axis);
+  const double lat0 = std::asin(std::clamp((m - c).dot(a) / R, -1.0, 1.0));
+  // which side: the latitude of the surface's middle point
+  const double mid[2] = {0.5 * (e.params[0].lo + e.params[0].hi), 0.5 * (e.params[1].lo + e.params[1].hi)};
+  const double lat_mid = std::asin(std::clamp((to_eigen(eval_xyz(e, mid)) - c).dot(a) / R, -1.0, 1.0));
+  if (std::abs(lat_mid - lat0) <= 1e-6) return TopoDS_Face();
+  const gp_Ax3 frame(to_pnt(c), gp_Dir(a.x(), a.y(), a.z()));
+  Handle(Geom_SphericalSurface) sphere = new Geom_SphericalSurface(frame, R);
+  BRepBuilderAPI_MakeFace mf(sphere, 0, 2 * M_PI, lat_mid > lat0 ? lat0 : -M_PI / 2, lat_mid > lat0 ? M_PI / 2 : lat0,
+                             1e-9 * R);
+  if (!mf.IsDone()) return TopoDS_Face();
+  GProp_GProps g;
+  BRepGProp::SurfaceProperties(mf.Face(), g);
+  const double b = fitted_area(fitted, tol);
+  if (std::abs(g.Mass() - b) > 1e-6 * b) return TopoDS_Face();
+  return mf.Face();
 }
 
 }  // namespace
@@ -242,8 +323,9 @@ TopoDS_Shape entity_shape(const EntitySpec& e, double tol, double* fit_error) {
       BRepBuilderAPI_MakeFace mf(f, tol);
       if (!mf.IsDone()) throw ComputeError("could not build a face from the surface entity");
       s = mf.Face();
-      TopoDS_Face planar = planar_face(e, f, tol);
-      if (!planar.IsNull()) s = planar;
+      TopoDS_Face exact = planar_face(e, f, tol);
+      if (exact.IsNull()) exact = spherical_cap_face(e, f, tol);
+      if (!exact.IsNull()) s = exact;
       break;
     }
     case EntityKind::Brep: {

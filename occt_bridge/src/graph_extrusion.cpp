@@ -7,7 +7,6 @@
 // boundary. These faces meet only along their edges, so they are sewn without an arrangement.
 #include <BRepAdaptor_Curve.hxx>
 #include <BRepAdaptor_Surface.hxx>
-#include <BRepPrimAPI_MakePrism.hxx>
 #include <BRepTools.hxx>
 #include <BRepTools_WireExplorer.hxx>
 #include <BRepTopAdaptor_FClass2d.hxx>
@@ -36,8 +35,9 @@ bool segments_meet(const gp_Pnt2d& p, const gp_Pnt2d& q, const gp_Pnt2d& r, cons
 
 }  // namespace
 
-TopoDS_Shape graph_extrusion(const TopoDS_Face& face, const Eigen::Vector3d& d, double L, double size,
-                             std::vector<GraphExtrusionFace>* faces) {
+TopoDS_Shape graph_extrusion(const TopoDS_Face& face, const ScrewJoint& j, double L, double size, double tol,
+                             double* fit_err, std::vector<GraphExtrusionFace>* faces) {
+  const Eigen::Vector3d d = j.direction;
   // one wire (no holes)
   int wires = 0;
   for (TopExp_Explorer wx(face, TopAbs_WIRE); wx.More(); wx.Next()) ++wires;
@@ -107,17 +107,22 @@ TopoDS_Shape graph_extrusion(const TopoDS_Face& face, const Eigen::Vector3d& d, 
   gp_Trsf tr;
   tr.SetTranslation(shift);
   out.push_back({TopoDS::Face(face.Moved(TopLoc_Location(tr))), -2, 0, 0});
+  double err = *fit_err;
   for (std::size_t k = 0; k < kept.size(); ++k) {
-    BRepPrimAPI_MakePrism prism(kept[k], shift);
-    if (!prism.IsDone()) return {};
+    // exact surfaces where the edge is a line or a circle (a circle along its normal: a cylinder)
     double f, l;
-    BRep_Tool::Range(kept[k], f, l);
-    for (TopExp_Explorer fx(prism.Shape(), TopAbs_FACE); fx.More(); fx.Next())
-      out.push_back({TopoDS::Face(fx.Current()), int(k), f, l});
+    Handle(Geom_Curve) c = BRep_Tool::Curve(kept[k], f, l);
+    if (c.IsNull()) return {};
+    const double f0 = f, l0 = l;
+    c = canonical_curve(c, f, l, std::max(1e-3 * tol, 1e-10 * size));
+    const auto walls = sweep_curve(c, f, l, j, L, tol, &err);
+    if (walls.empty()) return {};
+    for (const auto& w : walls) out.push_back({w, int(k), f0, l0});
   }
   for (const auto& g : out) fs.push_back(g.face);
   TopoDS_Shape solid = sew_solid(fs, gap);
   if (solid.IsNull()) return {};
+  *fit_err = err;
   if (faces) *faces = out;
   return solid;
 }

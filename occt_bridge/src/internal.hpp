@@ -115,20 +115,20 @@ Bnd_Box shape_box(const TopoDS_Shape& s);
 /// Sews faces into one closed solid, oriented outwards (null when they do not make one shell).
 TopoDS_Shape sew_solid(const std::vector<TopoDS_Face>& fs, double tol);
 
-/// The solid swept by a face translated by L along the unit vector d, built directly when the face
-/// is a graph along d: n . d keeps one sign on it and its boundary, without seams and collapsed
+/// The solid swept by a face translated by L along the unit direction d of prismatic joint j, built
+/// directly when the face is a graph along d: n . d keeps one sign on it and its boundary, without seams and collapsed
 /// edges, projects along d onto a simple closed curve. Then every line parallel to d meets the face
 /// at most once and the solid is bounded by the face, its translate and the sweep of that boundary,
-/// which meet only along their edges. Null when the conditions do not hold or sewing fails.
-/// `faces` receives the faces and `edges` the parameter range of the boundary edge each face sweeps
-/// ({0, 0} for the face at the start, {1, 1} for the one at the end: see `role`).
+/// which meet only along their edges (the sweeps exact for lines and circles, else fitted within
+/// tol, `fit_err` raised to their error). Null when the conditions do not hold or sewing fails.
+/// `faces` receives the faces, each with its role.
 struct GraphExtrusionFace {
   TopoDS_Face face;
   int role = 0;  ///< -1 the face at the start, -2 at the end, k >= 0 the sweep of boundary edge k
   double first = 0, last = 0;  ///< that edge's parameter range
 };
-TopoDS_Shape graph_extrusion(const TopoDS_Face& face, const Eigen::Vector3d& d, double L, double size,
-                             std::vector<GraphExtrusionFace>* faces);
+TopoDS_Shape graph_extrusion(const TopoDS_Face& face, const ScrewJoint& j, double L, double size, double tol,
+                             double* fit_err, std::vector<GraphExtrusionFace>* faces);
 
 /// Keeps OCCT's translators from printing to stdout (stdout carries the report).
 void quiet_occt();

@@ -447,7 +447,8 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
     const TopoDS_Face face = fx.More() ? TopoDS::Face(fx.Current()) : TopoDS_Face();
     if (fx.More()) fx.Next();
     std::vector<GraphExtrusionFace> gfs;
-    TopoDS_Shape direct = !face.IsNull() && !fx.More() ? graph_extrusion(face, j.direction, T, size, &gfs)
+    double gerr = fit_err;
+    TopoDS_Shape direct = !face.IsNull() && !fx.More() ? graph_extrusion(face, j, T, size, tol, &gerr, &gfs)
                                                        : TopoDS_Shape();
     bool ok = !direct.IsNull() && BRepCheck_Analyzer(direct).IsValid();
     if (ok) {
@@ -456,6 +457,7 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
       ok = !sas.CheckOrientedShells(direct, true) && !sas.HasFreeEdges();
     }
     if (ok) {
+      fit_err = gerr;
       const int lo_id = variety("limit", "the entity at the start of joint " + std::to_string(joint_no) + "'s range",
                                 {{qn, 0.0}}, nlohmann::json::object());
       const int hi_id = variety("limit", "the entity at the end of joint " + std::to_string(joint_no) + "'s range",
