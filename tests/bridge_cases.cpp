@@ -212,3 +212,38 @@ TEST_CASE("Chains: a sphere moved by four prismatic joints agrees with Monte Car
   CHECK(std::abs(r.report.volume_mc - r.report.volume_brep) < 4.5 * r.report.volume_mc_stderr);
   CHECK(r.report.volume_divergence == Approx(r.report.volume_brep).epsilon(1e-9));
 }
+
+namespace {
+/// Section 4.3's solid: a 270-degree arc of radius 5 (its missing quarter the one at angles 90-180
+/// degrees about the centre) swept by a translation of length L across the axis (along -y) and
+/// extruded to height H along the axis. A line x = const meets the swept section in [y - L, y] for
+/// each arc point y on it: on the left half one point (length L), on the right half two points
+/// 2 s apart (s = sqrt(25 - x^2)), length min(2 L, L + 2 s).
+double sec4_3_volume(double L, double H) {
+  auto F = [](double x) { return 0.5 * (x * std::sqrt(25 - x * x) + 25 * std::asin(x / 5)); };  // int sqrt(25 - x^2)
+  const double xs = L < 10 ? std::sqrt(25 - L * L / 4) : 0.0;  // where 2 s = L
+  const double right = 2 * L * xs + L * (5 - xs) + 2 * (F(5) - F(xs));
+  return H * (5 * L + right);
+}
+}  // namespace
+
+TEST_CASE("Paper 4.3: a patch slid along itself by its revolve, extruded; limits and a DH offset varied") {
+  const std::string path = SWEEP_SOURCE_DIR "/examples/paper/sec4_3_surface_revolve_two_extrusions.json";
+  auto base = sweep::occt::run_sweep(sweep::load_spec(path));
+  INFO(base.report.to_json().dump());
+  REQUIRE(base.report.ok());
+  CHECK(base.report.valid);
+  CHECK(base.report.closed);
+  // the example's own reference is the same closed form: 15 (92 + 12.5 pi - 25 asin 0.6)
+  CHECK(base.report.volume_brep == Approx(sec4_3_volume(8, 15)).epsilon(1e-8));
+  // design variation: the translation across over [0, 3], the one along the axis over [0, 4], and
+  // joint 1's DH offset d from q + 10 to q + 4 (which only moves the solid 6 down)
+  auto varied = sweep::occt::run_sweep(sweep::load_spec(
+      path, {"/motion/joints/1/range=[0, 3]", "/motion/joints/0/range=[0, 4]", "/motion/joints/0/d=\"q+4\""}));
+  INFO(varied.report.to_json().dump());
+  REQUIRE(varied.report.ok());
+  CHECK(varied.report.volume_brep == Approx(sec4_3_volume(3, 9)).epsilon(1e-8));
+  // along the axis (z): the offset moves the bottom 6 down, the shorter stroke brings the top 6 more
+  CHECK(varied.report.bbox_min[2] == Approx(base.report.bbox_min[2] - 6).margin(1e-6));
+  CHECK(varied.report.bbox_max[2] == Approx(base.report.bbox_max[2] - 12).margin(1e-6));
+}

@@ -102,3 +102,20 @@ TEST_CASE("Kinds: a parametric spherical cap is built as an exact sphere face") 
   CHECK(r.volume_brep == Approx(9 * M_PI).epsilon(1e-9));
   CHECK(r.faces == 3);
 }
+
+TEST_CASE("Kinds: a joint that slides a curve along itself extends its parameter range") {
+  // an arc of radius 2 turned about its own axis: the longer arc, then extruded 3 along the axis
+  const std::string head = R"js({"sweep": 1, "angles": "deg",
+      "entity": {"kind": "curve", "params": {"t": [0, 1.5707963267948966]}, "xyz": ["2*cos(t)", "2*sin(t)", "0"]},
+      "motion": {"kind": "axes", "joints": [
+        {"type": "prismatic", "direction": [0, 0, 1], "range": [0, 3]},
+        {"type": "revolute", "point": [0, 0, 0], "direction": [0, 0, 1], "range": )js";
+  auto half = run(head + "[0, 90]}]}}");
+  CHECK(half.status == "ok");
+  CHECK(half.dimension == 2);
+  CHECK(half.area == Approx(2 * M_PI * 3).epsilon(1e-7));  // half a cylinder of radius 2, height 3
+  // beyond a whole turn the arc closes into the circle, covered once
+  auto whole = run(head + "[0, 400]}]}}");
+  CHECK(whole.status == "ok");
+  CHECK(whole.area == Approx(4 * M_PI * 3).epsilon(1e-7));
+}

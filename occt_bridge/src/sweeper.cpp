@@ -900,12 +900,19 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
     TopoDS_Shape shape = moved(raw, motion.home);
     rep.seconds["entity"] = since(t_start);
     std::unique_ptr<SignedDistance> sd = make_signed_distance(spec.entity);
-    std::unique_ptr<ParametricEntity> pe = ParametricEntity::make(spec.entity);
+    const std::unique_ptr<ParametricEntity> pe = ParametricEntity::make(spec.entity);
+    // the entity's map as the stages see it (its ranges extended where a joint slides it along itself)
+    std::unique_ptr<ParametricEntity> stage_pe = ParametricEntity::make(spec.entity);
 
-    // Stages, innermost joint first: each sweeps the previous stage's set.
+    // Stages, innermost joint first: each sweeps the previous stage's set. While that set is still
+    // the parametric entity (placed by G), a joint that slides it along itself only extends one of
+    // its parameter ranges: the set keeps its dimension and the next joint sweeps it.
     int dim = rep.dimension;
     Candidates last_cands;
     const int n = int(motion.dof());
+    EntitySpec entity = spec.entity;
+    Eigen::Isometry3d G = motion.home;
+    bool entity_intact = parametric;
     for (int i = n - 1; i >= 0; --i) {
       if (opt.progress)
         opt.progress("stage " + std::to_string(n - i) + "/" + std::to_string(n) + ": joint " + std::to_string(i + 1) +
@@ -913,6 +920,17 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
       ScrewJoint j = motion.joints[i];
       double T = j.hi - j.lo;
       if (j.type == JointType::Revolute && T >= 2 * M_PI) T = 2 * M_PI;  // a full turn covers everything
+      EntitySpec extended;
+      if (entity_intact && (dim == 1 || dim == 2) && slides_along_itself(entity, G, j, T, size, &extended)) {
+        if (opt.progress) opt.progress("joint " + std::to_string(i + 1) + " slides the entity along itself");
+        entity = extended;
+        G = j.transform(j.lo) * G;
+        raw = entity_shape(entity, fit_tol, &fit_err);
+        shape = moved(raw, G);
+        stage_pe = ParametricEntity::make(entity);
+        rep.seconds["entity"] = since(t_start);
+        continue;
+      }
       TopoDS_Shape body = moved(shape, j.transform(j.lo));
       if (dim == 0) {
         shape = point_sweep(body, j, T, fit_tol, size);
@@ -920,14 +938,14 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
         shape = curve_sweep(body, j, T, tol, fit_tol, size, &fit_err);
       } else {
         Motion sd_motion;
-        sd_motion.home = motion.home;
+        sd_motion.home = G;
         sd_motion.joints = {j};
         sd_motion.joints[0].hi = j.lo + T;
         const bool use_sd = sd && i == n - 1 && dim == 3;
         // A surface entity's first stage: points are classified against its parametric map.
-        const bool use_pe = pe && i == n - 1 && dim == 2;
+        const bool use_pe = stage_pe && entity_intact && dim == 2;
         Candidates stage_cands;
-        shape = solid_sweep(body, dim, j, T, use_sd ? sd.get() : nullptr, use_pe ? pe.get() : nullptr, sd_motion, extent(body), size, tol, fit_tol,
+        shape = solid_sweep(body, dim, j, T, use_sd ? sd.get() : nullptr, use_pe ? stage_pe.get() : nullptr, sd_motion, extent(body), size, tol, fit_tol,
                             fit_err, rep, n - i, i + 1, &stage_cands);
         if (i == 0) {
           last_cands = std::move(stage_cands);
@@ -944,6 +962,7 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
         }
       }
       dim = std::min(3, dim + 1);
+      entity_intact = false;
     }
     rep.dimension = dim;
     TopoDS_Shape result = shape;

@@ -1,6 +1,7 @@
 #include "sweep/membership.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <cmath>
 #include <vector>
 
@@ -334,6 +335,69 @@ MonteCarloResult monte_carlo_volume(const std::function<bool(const Vector3d&)>& 
   r.volume = vbox * f;
   r.stderr_ = samples ? vbox * std::sqrt(f * (1.0 - f) / double(samples)) : 0.0;
   return r;
+}
+
+bool slides_along_itself(const EntitySpec& e, const Eigen::Isometry3d& G, const ScrewJoint& j, double T,
+                         double scale, EntitySpec* reduced) {
+  if (e.kind != EntityKind::Curve && e.kind != EntityKind::Surface) return false;
+  const auto pe = ParametricEntity::make(e);
+  if (!pe || !(T > 0)) return false;
+  const std::size_t np = pe->num_params();
+  const Eigen::Isometry3d A = j.transform(j.lo) * G;
+  std::uint64_t state = 0x9e3779b97f4a7c15ull;
+  auto uniform = [&]() {  // splitmix64
+    state += 0x9e3779b97f4a7c15ull;
+    std::uint64_t z = state;
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    return double((z ^ (z >> 31)) >> 11) * 0x1.0p-53;
+  };
+  std::vector<double> s(np);
+  auto random_params = [&]() {
+    for (std::size_t i = 0; i < np; ++i) s[i] = pe->lo(i) + (pe->hi(i) - pe->lo(i)) * uniform();
+  };
+  std::vector<Eigen::Vector3d> jac(np);
+  for (std::size_t k = 0; k < np; ++k) {
+    // the rate: the joint's velocity at a point is c times the point's derivative in s_k
+    double c = 0;
+    bool ok = true;
+    for (int n = 0; n < 16 && ok; ++n) {
+      random_params();
+      const Eigen::Vector3d y = A * pe->eval(s.data(), jac.data());
+      const Eigen::Vector3d g = A.linear() * jac[k], v = j.velocity(y);
+      if (!(g.squaredNorm() > 0) || !(v.squaredNorm() > 0)) {
+        ok = false;
+        break;
+      }
+      const double ck = v.dot(g) / g.squaredNorm();
+      if ((v - ck * g).norm() > 1e-9 * v.norm()) ok = false;
+      if (n == 0) c = ck;
+      else if (std::abs(ck - c) > 1e-9 * std::abs(c)) ok = false;
+    }
+    if (!ok || c == 0) continue;
+    // the motion over the whole range is that shift
+    for (int n = 0; n < 64 && ok; ++n) {
+      random_params();
+      const double t = T * uniform();
+      const Eigen::Vector3d moved = j.transform(t) * (A * pe->eval(s.data()));
+      s[k] += c * t;
+      const Eigen::Vector3d shifted = A * pe->eval(s.data());
+      if (!shifted.allFinite() || (moved - shifted).norm() > 1e-9 * scale) ok = false;
+    }
+    if (!ok) continue;
+    *reduced = e;
+    ParamRange& r = reduced->params[k];
+    const double grow = std::abs(c) * T;
+    double lo = c > 0 ? r.lo : r.lo - grow, hi = c > 0 ? r.hi + grow : r.hi;
+    if (j.type == JointType::Revolute && hi - lo > 2 * M_PI * std::abs(c)) {
+      if (c > 0) hi = lo + 2 * M_PI * std::abs(c);
+      else lo = hi - 2 * M_PI * std::abs(c);
+    }
+    r.lo = lo;
+    r.hi = hi;
+    return true;
+  }
+  return false;
 }
 
 }  // namespace sweep

@@ -56,6 +56,15 @@ class ParametricEntity {
   double hessian_bound_ = 0.0;
 };
 
+/// When screw joint j, moving over [j.lo, j.lo + T], carries a curve or surface entity (placed by
+/// G) along itself with a parametrisation that shifts one parameter at a constant rate,
+///   M(j.lo + t) G Gamma(s) = M(j.lo) G Gamma(s + c t e_k)   for all s in the box and t in [0, T],
+/// the image of the stage is the same entity with parameter k's range extended by c T (to at most
+/// one period, 2 pi |c|, for a revolute joint), placed by M(j.lo) G: that entity goes in *reduced.
+/// Checked on random samples to 1e-9 of `scale`. False when no parameter does this.
+bool slides_along_itself(const EntitySpec& e, const Eigen::Isometry3d& G, const ScrewJoint& j, double T,
+                         double scale, EntitySpec* reduced);
+
 /// True when x is in the image of (q, s) -> M(q) Gamma(s) over the joint box and the parameter
 /// box. A branch and bound over both boxes discards a sub-box when the gap |M(c)^-1 x - Gamma(s_c)|
 /// exceeds what the motion and the map can move within it; membership is proved by a projected
