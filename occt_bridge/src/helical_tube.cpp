@@ -342,6 +342,26 @@ TopoDS_Shape ball_screw_sweep(const Eigen::Vector3d& c, double r, const ScrewJoi
 
 namespace {
 
+/// Root of a function increasing through zero on [a, b] (f(a) <= 0 <= f(b)), Illinois regula falsi.
+double root_between(const std::function<double(double)>& f, double a, double b) {
+  double fa = f(a), fb = f(b);
+  if (fa >= 0) return a;
+  if (fb <= 0) return b;
+  for (int it = 0; it < 100 && b - a > 1e-15 * (1 + std::abs(a)); ++it) {
+    const double x = b - fb * (b - a) / (fb - fa);
+    const double fx = f(x);
+    if (fx == 0) return x;
+    if (fx < 0) {
+      a = x, fa = fx;
+      fb *= 0.5;
+    } else {
+      b = x, fb = fx;
+      fa *= 0.5;
+    }
+  }
+  return 0.5 * (a + b);
+}
+
 /// The path of a point under a screw motion, c(s) = M(s) c, with its first two derivatives.
 struct HelixPath {
   Eigen::Vector3d o, e1, e2, w;  ///< c(s) = o + cos s e1 + sin s e2 + b s w
@@ -392,44 +412,10 @@ struct HelixPath {
   /// The root of |x - c(s)|^2 = r^2 between s0 (where it is below) and s1 (where it is above).
   double crossing(const Eigen::Vector3d& x, double r, double s0, double s1) const {
     auto h = [&](double s) { return (x - pos(s)).squaredNorm() - r * r; };
-    double f0 = h(s0), f1 = h(s1);
-    if (f0 >= 0) return s0;
-    for (int it = 0; it < 100 && std::abs(s1 - s0) > 1e-15 * (1 + std::abs(s0)); ++it) {
-      // Illinois regula falsi
-      const double s = s1 - f1 * (s1 - s0) / (f1 - f0);
-      const double f = h(s);
-      if (f == 0) return s;
-      if ((f < 0) == (f0 < 0)) {
-        s0 = s, f0 = f;
-        f1 *= 0.5;
-      } else {
-        s1 = s, f1 = f;
-        f0 *= 0.5;
-      }
-    }
-    return 0.5 * (s0 + s1);
+    if (s0 < s1) return root_between(h, s0, s1);
+    return root_between([&](double s) { return -h(s); }, s1, s0);
   }
 };
-
-/// Root of a function increasing through zero on [a, b] (f(a) <= 0 <= f(b)), Illinois regula falsi.
-double root_between(const std::function<double(double)>& f, double a, double b) {
-  double fa = f(a), fb = f(b);
-  if (fa >= 0) return a;
-  if (fb <= 0) return b;
-  for (int it = 0; it < 100 && b - a > 1e-15 * (1 + std::abs(a)); ++it) {
-    const double x = b - fb * (b - a) / (fb - fa);
-    const double fx = f(x);
-    if (fx == 0) return x;
-    if (fx < 0) {
-      a = x, fa = fx;
-      fb *= 0.5;
-    } else {
-      b = x, fb = fx;
-      fa *= 0.5;
-    }
-  }
-  return 0.5 * (a + b);
-}
 
 /// An edge on surface S along the 2D curve c over [a, b], with its 3D curve built from it.
 TopoDS_Edge edge_on(const Handle(Geom_Surface)& S, const Handle(Geom2d_Curve)& c, double a, double b, double tol) {

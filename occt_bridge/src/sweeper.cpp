@@ -401,6 +401,20 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
     return cand.add_variety(std::move(v));
   };
   const nlohmann::json qfree = {{qn, {0.0, T}}};
+  // the entity at the start or at the end of the joint's range
+  auto limit_variety = [&](bool end) {
+    return variety("limit",
+                   std::string("the entity at the ") + (end ? "end" : "start") + " of joint " + std::to_string(joint_no) +
+                       "'s range",
+                   {{qn, end ? T : 0.0}}, nlohmann::json::object());
+  };
+  // a directly built solid is used when it is valid and closed
+  auto valid_and_closed = [](const TopoDS_Shape& s) {
+    if (s.IsNull() || !BRepCheck_Analyzer(s).IsValid()) return false;
+    ShapeAnalysis_Shell sas;
+    sas.LoadShells(s);
+    return !sas.CheckOrientedShells(s, true) && !sas.HasFreeEdges();
+  };
   // A ball whose centre's helix has a reach above its radius sweeps a tube closed by two half
   // balls: built directly, without an arrangement, when the build is valid and closed.
   if (dim == 3 && j.type == JointType::Helical && j.pitch != 0) {
@@ -414,21 +428,12 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
           helix_reach_exceeds(j, centre, T, radius, std::max(1e-6 * radius, 100 * tol))
               ? ball_screw_sweep(centre, radius, j, T, fit_tol, size, &err, &fs)
               : ball_screw_sweep_overlap(centre, radius, j, T, fit_tol, size, &err, &fs, &roles);
-      bool ok = !direct.IsNull() && BRepCheck_Analyzer(direct).IsValid();
-      if (ok) {
-        ShapeAnalysis_Shell sas;
-        sas.LoadShells(direct);
-        ok = !sas.CheckOrientedShells(direct, true) && !sas.HasFreeEdges();
-      }
-      if (ok) {
+      if (valid_and_closed(direct)) {
         fit_err = err;
         const int tube = variety("interior", "grazing curve (n . v = 0) on entity face 1 swept by joint " +
                                                  std::to_string(joint_no) + " (a tube about the centre's helix)",
                                  nlohmann::json::object(), qfree);
-        const int lo_id = variety("limit", "the entity at the start of joint " + std::to_string(joint_no) + "'s range",
-                                  {{qn, 0.0}}, nlohmann::json::object());
-        const int hi_id = variety("limit", "the entity at the end of joint " + std::to_string(joint_no) + "'s range",
-                                  {{qn, T}}, nlohmann::json::object());
+        const int lo_id = limit_variety(false), hi_id = limit_variety(true);
         cand.varieties += 1;
         for (std::size_t k = 0; k < fs.size(); ++k)
           cand.add(roles[k] == 0 ? tube : roles[k] == 1 ? lo_id : hi_id, {fs[k]}, true);
@@ -450,18 +455,9 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
     double gerr = fit_err;
     TopoDS_Shape direct = !face.IsNull() && !fx.More() ? graph_extrusion(face, j, T, size, tol, &gerr, &gfs)
                                                        : TopoDS_Shape();
-    bool ok = !direct.IsNull() && BRepCheck_Analyzer(direct).IsValid();
-    if (ok) {
-      ShapeAnalysis_Shell sas;
-      sas.LoadShells(direct);
-      ok = !sas.CheckOrientedShells(direct, true) && !sas.HasFreeEdges();
-    }
-    if (ok) {
+    if (valid_and_closed(direct)) {
       fit_err = gerr;
-      const int lo_id = variety("limit", "the entity at the start of joint " + std::to_string(joint_no) + "'s range",
-                                {{qn, 0.0}}, nlohmann::json::object());
-      const int hi_id = variety("limit", "the entity at the end of joint " + std::to_string(joint_no) + "'s range",
-                                {{qn, T}}, nlohmann::json::object());
+      const int lo_id = limit_variety(false), hi_id = limit_variety(true);
       std::map<int, int> edge_ids;
       for (const auto& g : gfs) {
         if (g.role < 0) {
@@ -626,12 +622,7 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
     }
   }
   {
-    const int lo_id = variety("limit", "the entity at the start of joint " + std::to_string(joint_no) + "'s range",
-                              {{qn, 0.0}}, nlohmann::json::object());
-    const int hi_id = full_turn ? -1
-                                : variety("limit", "the entity at the end of joint " + std::to_string(joint_no) +
-                                                       "'s range",
-                                          {{qn, T}}, nlohmann::json::object());
+    const int lo_id = limit_variety(false), hi_id = full_turn ? -1 : limit_variety(true);
     for (const auto& f : pieces) {
       cand.add(lo_id, {f});
       if (!full_turn) cand.add(hi_id, {TopoDS::Face(moved(f, j.transform(T)))});
