@@ -1,3 +1,5 @@
+#include <BRepAdaptor_Curve.hxx>
+#include <random>
 // The single-stage sweep pipeline: candidate varieties -> arrangement -> cell classification ->
 // solid -> validation and report.
 #include <BOPAlgo_MakerVolume.hxx>
@@ -1104,12 +1106,71 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
       rep.seconds["monte_carlo"] = since(t_mc);
     }
 
+    // Containment: every point of the moved entity belongs to the swept set, so sampled points
+    // M(q) x (x on the entity, q in the joint box) must lie in the solid: all of them within its
+    // box, and for chains (whose stages are arranged again and again) a few classified against it
+    // (on fitted faces a classification costs tens of milliseconds, too much for one joint's
+    // budget). This catches a solid that lost part of the set, which the two volumes computed from
+    // the solid itself cannot see.
+    const auto t_cont = Clock::now();
+    std::string missing;
+    {
+      std::vector<Eigen::Vector3d> local;  // points of the entity in its own frame, placed
+      std::mt19937_64 rng(20261123);
+      std::uniform_real_distribution<double> uni(0.0, 1.0);
+      if (pe) {
+        std::vector<double> s(pe->num_params());
+        for (int k = 0; k < 256; ++k) {
+          for (std::size_t i = 0; i < s.size(); ++i) s[i] = pe->lo(i) + (pe->hi(i) - pe->lo(i)) * uni(rng);
+          local.push_back(pe->eval(s.data()));
+        }
+      } else {
+        const TopoDS_Shape ent = entity_shape(spec.entity, fit_tol, nullptr);
+        for (TopExp_Explorer ex(ent, TopAbs_VERTEX); ex.More(); ex.Next())
+          local.push_back(to_eigen(BRep_Tool::Pnt(TopoDS::Vertex(ex.Current()))));
+        for (TopExp_Explorer ex(ent, TopAbs_EDGE); ex.More(); ex.Next()) {
+          const TopoDS_Edge& e = TopoDS::Edge(ex.Current());
+          if (BRep_Tool::Degenerated(e)) continue;
+          BRepAdaptor_Curve c(e);
+          for (int k = 1; k < 4; ++k)
+            local.push_back(to_eigen(c.Value(c.FirstParameter() + (c.LastParameter() - c.FirstParameter()) * k / 4)));
+        }
+      }
+      const double ctol = 10 * std::max({rep.tol_achieved, tol, 1e-9 * size});
+      Bnd_Box box;
+      box.Update(rep.bbox_min[0], rep.bbox_min[1], rep.bbox_min[2], rep.bbox_max[0], rep.bbox_max[1], rep.bbox_max[2]);
+      box.Enlarge(ctol);
+      std::vector<double> q(motion.dof());
+      std::vector<gp_Pnt> probes;
+      for (int k = 0; k < 1024 && !local.empty() && missing.empty(); ++k) {
+        for (std::size_t i = 0; i < q.size(); ++i) {
+          const auto& jj = motion.joints[i];
+          const double hi = jj.type == JointType::Revolute ? std::min(jj.hi, jj.lo + 2 * M_PI) : jj.hi;
+          q[i] = jj.lo + (hi - jj.lo) * uni(rng);
+        }
+        const gp_Pnt x = to_pnt(motion.transform(q) * local[k % local.size()]);
+        if (box.IsOut(x)) missing = "a point of the moved entity lies outside the solid's box";
+        else if (k % 64 == 0 && motion.dof() > 1) probes.push_back(x);
+      }
+      for (const gp_Pnt& x : probes) {
+        if (!missing.empty()) break;
+        bool inside = false;
+        for (TopExp_Explorer ex(result, TopAbs_SOLID); ex.More() && !inside; ex.Next()) {
+          BRepClass3d_SolidClassifier cls(ex.Current(), x, ctol);
+          inside = cls.State() != TopAbs_OUT;
+        }
+        if (!inside) missing = "a point of the moved entity lies outside the solid";
+      }
+    }
+    rep.seconds["containment"] = since(t_cont);
+
     // Verdict.
     const double vtol = std::max(10 * rep.tol_achieved, tol) * rep.area + 1e-9 * std::abs(rep.volume_brep);
     std::string why;
     if (!rep.valid) why = "the solid is not valid (BRepCheck)";
     else if (!rep.closed) why = "the solid is not closed";
     else if (rep.volume_brep <= 0) why = "the solid has no volume";
+    else if (!missing.empty()) why = missing + ": part of the swept set is missing";
     else if (std::abs(rep.volume_brep - rep.volume_divergence) > vtol)
       why = "B-rep and divergence volumes disagree (" + std::to_string(rep.volume_brep) + " vs " +
             std::to_string(rep.volume_divergence) + ")";
