@@ -1,5 +1,6 @@
 // sweepvol joints: kinematic joint recognition of an assembly file (SPEC.md "Assembly file v1").
 #include "joints_cmd.hpp"
+#include "args.hpp"
 
 #include <cmath>
 #include <cstdlib>
@@ -39,10 +40,7 @@ JointsArgs parse_joints_args(int argc, char** argv) {
   JointsArgs a;
   for (int i = 1; i < argc; ++i) {
     const std::string s = argv[i];
-    auto value = [&](const char* name) -> std::string {
-      if (i + 1 >= argc) throw sweep::InputError(name, std::string("option ") + name + " needs a value");
-      return argv[++i];
-    };
+    auto value = [&](const char* name) { return sweep::cli::option_value(argc, argv, i, name); };
     if (s == "--help" || s == "-h")
       a.help = true;
     else if (s == "--json")

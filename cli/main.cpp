@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "joints_cmd.hpp"
+#include "args.hpp"
 #include "section_cmd.hpp"
 #include "occt_bridge/sweeper.hpp"
 #include "sweep/error.hpp"
@@ -48,10 +49,7 @@ Args parse_args(int argc, char** argv, bool allow_output) {
   Args a;
   for (int i = 2; i < argc; ++i) {
     std::string s = argv[i];
-    auto value = [&](const char* name) -> std::string {
-      if (i + 1 >= argc) throw sweep::InputError(name, std::string("option ") + name + " needs a value");
-      return argv[++i];
-    };
+    auto value = [&](const char* name) { return sweep::cli::option_value(argc, argv, i, name); };
     if (s == "--set") a.sets.push_back(value("--set"));
     else if (s.rfind("--set=", 0) == 0) a.sets.push_back(s.substr(6));
     else if (allow_output && s == "-o") a.out = value("-o");

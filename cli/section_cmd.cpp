@@ -1,6 +1,7 @@
 // sweepvol section: cross-sections z = const of the swept solid, as JSON and as an SVG drawing;
 // and the SVG drawing of `sweepvol varieties --svg`.
 #include "section_cmd.hpp"
+#include "args.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -51,10 +52,7 @@ SectionArgs parse_section_args(int argc, char** argv) {
   SectionArgs a;
   for (int i = 1; i < argc; ++i) {
     const std::string s = argv[i];
-    auto value = [&](const char* name) -> std::string {
-      if (i + 1 >= argc) throw sweep::InputError(name, std::string("option ") + name + " needs a value");
-      return argv[++i];
-    };
+    auto value = [&](const char* name) { return sweep::cli::option_value(argc, argv, i, name); };
     if (s == "--set") a.sets.push_back(value("--set"));
     else if (s.rfind("--set=", 0) == 0) a.sets.push_back(s.substr(6));
     else if (s == "--z") a.z = value("--z"), a.has_z = true;

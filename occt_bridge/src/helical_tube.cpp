@@ -170,6 +170,22 @@ Handle(Geom_BSplineSurface) half_ball(const Eigen::Vector3d& c, double r, const 
   return new Geom_BSplineSurface(P, W, uk, vk, um, vm, 2, p);
 }
 
+/// The chord |c(s) - c(s + D)| of a helix of radius R rising b per radian.
+double helix_chord(double R, double b, double D) { return std::sqrt(2 * R * R * (1 - std::cos(D)) + b * b * D * D); }
+
+/// A lower bound of the chord |c(s) - c(s + D)| of a helix (radius R, rise b per radian) over D in
+/// [D0, D1]: its least value on samples spaced 1 % of r / speed apart, less what it can drop
+/// between two samples (its slope is at most the helix speed).
+double chord_lower_bound(double R, double b, double r, double D0, double D1) {
+  auto chord = [&](double D) { return helix_chord(R, b, D); };
+  const double speed = std::sqrt(R * R + b * b);
+  const int n = std::max(64, int(std::ceil((D1 - D0) / (0.01 * r / speed))));
+  const double h = (D1 - D0) / n;
+  double lo = 1e300;
+  for (int k = 0; k <= n; ++k) lo = std::min(lo, chord(D0 + h * k));
+  return lo - h * speed;
+}
+
 }  // namespace
 
 bool sphere_of(const TopoDS_Shape& body, Eigen::Vector3d* centre, double* radius) {
@@ -203,7 +219,6 @@ bool helix_reach_exceeds(const ScrewJoint& j, const Eigen::Vector3d& c, double T
   // global: chords |c(s) - c(s + D)|^2 = 2 R^2 (1 - cos D) + b^2 D^2 grow until the first zero D1 of
   // R^2 sin D + b^2 D; double normals (and the end pair) have D in [D1, T], and their half lengths
   // bound the reach from below.
-  auto chord = [&](double D) { return std::sqrt(2 * R * R * (1 - std::cos(D)) + b * b * D * D); };
   auto g = [&](double D) { return R * R * std::sin(D) + b * b * D; };
   double D1 = -1;
   {
@@ -221,13 +236,7 @@ bool helix_reach_exceeds(const ScrewJoint& j, const Eigen::Vector3d& c, double T
     }
   }
   if (D1 < 0 || D1 >= T) return true;  // chords grow over the whole range
-  // min of the chord over [D1, T], sampled with a bound on the chord's slope (the helix speed)
-  const double speed = std::sqrt(R * R + b * b);
-  const int n = std::max(64, int(std::ceil((T - D1) / (0.01 * r / speed))));
-  const double h = (T - D1) / n;
-  double lo = 1e300;
-  for (int k = 0; k <= n; ++k) lo = std::min(lo, chord(D1 + h * k));
-  return lo - h * speed > 2 * (r + margin);
+  return chord_lower_bound(R, b, r, D1, T) > 2 * (r + margin);
 }
 
 namespace {
@@ -376,10 +385,7 @@ struct HelixPath {
   Eigen::Vector3d pos(double s) const { return o + std::cos(s) * e1 + std::sin(s) * e2 + b * s * w; }
   Eigen::Vector3d d1(double s) const { return -std::sin(s) * e1 + std::cos(s) * e2 + b * w; }
   Eigen::Vector3d d2(double s) const { return -std::cos(s) * e1 - std::sin(s) * e2; }
-  double chord(double D) const {
-    const double R = radius();
-    return std::sqrt(2 * R * R * (1 - std::cos(D)) + b * b * D * D);
-  }
+  double chord(double D) const { return helix_chord(radius(), b, D); }
   /// min over s in [lo, hi] of |x - c(s)|^2, the minimiser in *arg (sampled, then Newton
   /// safeguarded by bisection on the derivative).
   double min_dist2(const Eigen::Vector3d& x, double lo, double hi, double* arg) const {
@@ -471,13 +477,7 @@ TopoDS_Shape ball_screw_sweep_overlap(const Eigen::Vector3d& c, double r, const 
   // half a turn apart or two turns and more apart are disjoint: only the neighbouring turns meet
   if ((R * R + b * b) / R <= r + margin || T < 3 * M_PI) return {};
   if (H.chord(M_PI) <= 2 * (r + margin)) return {};
-  {
-    const double speed = std::sqrt(R * R + b * b);
-    const int n = std::max(64, int(std::ceil((T - 3 * M_PI) / (0.01 * r / speed))));
-    const double h = (T - 3 * M_PI) / n;
-    for (int k = 0; k <= n; ++k)
-      if (H.chord(3 * M_PI + h * k) - h * speed <= 2 * (r + margin)) return {};
-  }
+  if (chord_lower_bound(R, b, r, 3 * M_PI, T) <= 2 * (r + margin)) return {};
   // Points of the grazing circle at the start covered by the next turn (sigma in (pi, 3 pi)) and
   // by the previous one (sigma in (-3 pi, -pi)): each must be one arc, the two disjoint.
   const Eigen::Vector3d t0 = j.velocity(c).normalized();

@@ -1,8 +1,7 @@
-#include <BRepAdaptor_Curve.hxx>
-#include <random>
 // The single-stage sweep pipeline: candidate varieties -> arrangement -> cell classification ->
 // solid -> validation and report.
 #include <BOPAlgo_MakerVolume.hxx>
+#include <BRepAdaptor_Curve.hxx>
 #include <BRepAdaptor_Curve2d.hxx>
 #include <BRepAlgoAPI_Fuse.hxx>
 #include <BRepAlgoAPI_Splitter.hxx>
@@ -41,6 +40,7 @@
 #include <TopTools_ListOfShape.hxx>
 #include <TopoDS.hxx>
 #include <TopoDS_Compound.hxx>
+#include <random>
 #include <algorithm>
 #include <chrono>
 #include <map>
@@ -1125,10 +1125,10 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
           local.push_back(pe->eval(s.data()));
         }
       } else {
-        const TopoDS_Shape ent = entity_shape(spec.entity, fit_tol, nullptr);
-        for (TopExp_Explorer ex(ent, TopAbs_VERTEX); ex.More(); ex.Next())
+        // (the entity's shape, read or built once above: only parametric kinds are rebuilt)
+        for (TopExp_Explorer ex(raw, TopAbs_VERTEX); ex.More(); ex.Next())
           local.push_back(to_eigen(BRep_Tool::Pnt(TopoDS::Vertex(ex.Current()))));
-        for (TopExp_Explorer ex(ent, TopAbs_EDGE); ex.More(); ex.Next()) {
+        for (TopExp_Explorer ex(raw, TopAbs_EDGE); ex.More(); ex.Next()) {
           const TopoDS_Edge& e = TopoDS::Edge(ex.Current());
           if (BRep_Tool::Degenerated(e)) continue;
           BRepAdaptor_Curve c(e);

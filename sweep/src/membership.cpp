@@ -1,8 +1,9 @@
 #include "sweep/membership.hpp"
 
 #include <algorithm>
-#include <cstdint>
 #include <cmath>
+#include <cstdint>
+#include <random>
 #include <vector>
 
 #include "sweep/error.hpp"
@@ -344,14 +345,9 @@ bool slides_along_itself(const EntitySpec& e, const Eigen::Isometry3d& G, const 
   if (!pe || !(T > 0)) return false;
   const std::size_t np = pe->num_params();
   const Eigen::Isometry3d A = j.transform(j.lo) * G;
-  std::uint64_t state = 0x9e3779b97f4a7c15ull;
-  auto uniform = [&]() {  // splitmix64
-    state += 0x9e3779b97f4a7c15ull;
-    std::uint64_t z = state;
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    return double((z ^ (z >> 31)) >> 11) * 0x1.0p-53;
-  };
+  std::mt19937_64 rng(20261123);
+  std::uniform_real_distribution<double> uni(0.0, 1.0);
+  auto uniform = [&]() { return uni(rng); };
   std::vector<double> s(np);
   auto random_params = [&]() {
     for (std::size_t i = 0; i < np; ++i) s[i] = pe->lo(i) + (pe->hi(i) - pe->lo(i)) * uniform();
