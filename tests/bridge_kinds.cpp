@@ -1,6 +1,12 @@
 // One sweep per entity kind, each against a closed form.
+#include <BRepAdaptor_Surface.hxx>
+#include <BRepTools.hxx>
+#include <BRep_Builder.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopoDS.hxx>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <map>
 
 #include "occt_bridge/sweeper.hpp"
 #include "sweep/spec.hpp"
@@ -12,6 +18,19 @@ sweep::occt::Report run(const std::string& json) {
   auto r = sweep::occt::run_sweep(spec);
   INFO(r.report.to_json().dump());
   return r.report;
+}
+
+/// The number of faces of each surface type (GeomAbs_SurfaceType) of a computed shape, read back
+/// from the BREP file it is written to.
+std::map<int, int> surface_types(const sweep::occt::RunResult& r, const std::string& name) {
+  const std::string path = std::string(SWEEP_BINARY_DIR) + "/kinds_" + name + ".brep";
+  sweep::occt::write_shape(*r.shape, path, 1e-3);
+  TopoDS_Shape s;
+  BRep_Builder b;
+  BRepTools::Read(s, path.c_str(), b);
+  std::map<int, int> n;
+  for (TopExp_Explorer ex(s, TopAbs_FACE); ex.More(); ex.Next()) ++n[int(BRepAdaptor_Surface(TopoDS::Face(ex.Current())).GetType())];
+  return n;
 }
 
 const char* quarter_turn_z = R"("motion": {"kind": "axes", "joints": [{"type": "revolute", "point": [0, 0, 0],
@@ -118,4 +137,49 @@ TEST_CASE("Kinds: a joint that slides a curve along itself extends its parameter
   auto whole = run(head + "[0, 400]}]}}");
   CHECK(whole.status == "ok");
   CHECK(whole.area == Approx(4 * M_PI * 3).epsilon(1e-7));
+}
+
+TEST_CASE("Kinds: circles turned about an axis in their plane or through their axis sweep tori and spheres") {
+  // A ball of radius 1 whose centre is 3 from the axis, a quarter turn: the tube between its two
+  // halves is one exact torus face (Pappus: pi r^2 * 3 * pi / 2, plus the ball).
+  auto ball = sweep::occt::run_sweep(sweep::parse_spec(
+      std::string(R"({"sweep": 1, "angles": "deg", "entity": {"kind": "sphere", "center": [3, 0, 0], "radius": 1}, )") +
+          quarter_turn_z + "}",
+      "."));
+  INFO(ball.report.to_json().dump());
+  REQUIRE(ball.report.ok());
+  CHECK(ball.report.volume_brep == Approx(1.5 * M_PI * M_PI + 4 * M_PI / 3).epsilon(1e-12));
+  CHECK(ball.report.faces == 3);
+  auto types = surface_types(ball, "ball_quarter");
+  CHECK(types[GeomAbs_Torus] == 1);
+  CHECK(types[GeomAbs_Sphere] == 2);
+  CHECK(types[GeomAbs_SurfaceOfRevolution] == 0);
+  // A circle of radius 1 in the plane through the axis (a parametric curve, recognised as a circle
+  // from fitted points): the torus of radii 3 and 1 over a quarter turn, area 2 pi * 3 * pi / 2.
+  auto ring = sweep::occt::run_sweep(sweep::parse_spec(
+      std::string(R"js({"sweep": 1, "angles": "deg",
+      "entity": {"kind": "curve", "params": {"t": [0, 6.283185307179586]}, "xyz": ["3 + cos(t)", "0", "sin(t)"]}, )js") +
+          quarter_turn_z + "}",
+      "."));
+  INFO(ring.report.to_json().dump());
+  REQUIRE(ring.report.ok());
+  CHECK(ring.report.area == Approx(3 * M_PI * M_PI).epsilon(1e-8));
+  types = surface_types(ring, "ring_quarter");
+  CHECK(types[GeomAbs_Torus] >= 1);
+  CHECK(types.size() == 1);
+  // A half circle of radius 1 about the x axis at x = 3 (its axis meets the rotation axis): it lies
+  // on the sphere of radius sqrt 10 about the origin, and a quarter turn sweeps the patch of it
+  // between the latitudes +-asin(1 / sqrt 10): area 10 (pi / 2) (2 / sqrt 10) = pi sqrt 10.
+  auto rim = sweep::occt::run_sweep(sweep::parse_spec(
+      std::string(R"js({"sweep": 1, "angles": "deg",
+      "entity": {"kind": "curve", "params": {"t": [-1.5707963267948966, 1.5707963267948966]},
+      "xyz": ["3", "cos(t)", "sin(t)"]}, )js") +
+          quarter_turn_z + "}",
+      "."));
+  INFO(rim.report.to_json().dump());
+  REQUIRE(rim.report.ok());
+  CHECK(rim.report.area == Approx(M_PI * std::sqrt(10.0)).epsilon(1e-8));
+  types = surface_types(rim, "rim_quarter");
+  CHECK(types[GeomAbs_Sphere] >= 1);
+  CHECK(types.size() == 1);
 }

@@ -1,6 +1,11 @@
 // Faces swept by a curve under one screw joint.
 #include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepCheck_Analyzer.hxx>
+#include <BRepGProp.hxx>
+#include <GProp_GProps.hxx>
+#include <ShapeFix_Face.hxx>
 #include <Geom_SphericalSurface.hxx>
+#include <Geom_ToroidalSurface.hxx>
 #include <BRepBuilderAPI_Transform.hxx>
 #include <BRepPrimAPI_MakePrism.hxx>
 #include <BRepPrimAPI_MakeRevol.hxx>
@@ -107,15 +112,20 @@ std::vector<TopoDS_Face> planar_segment_sweep(const gp_Pnt& a, const gp_Pnt& b, 
   return out;
 }
 
-/// A circle whose axis meets the rotation axis at O lies on the sphere about O through it. A whole
-/// turn of an arc of it (its axial coordinate monotonic) sweeps the zone of that sphere between
-/// the latitudes of the arc's ends: returned as quarter-turn faces of one spherical surface, with
-/// exact iso-parametric edges, instead of general surfaces of revolution (which the arrangement
-/// intersects by marching). Empty when the circle lies on no such sphere.
-std::vector<TopoDS_Face> sphere_zone(const gp_Circ& circ, const gp_Pnt& a, const gp_Pnt& b, const gp_Ax1& axis,
-                                     double tol) {
+TopoDS_Edge edge_of(const Handle(Geom_Curve)& c, double first, double last) {
+  BRepBuilderAPI_MakeEdge mk(c, first, last);
+  if (!mk.IsDone())
+    throw ComputeError("could not build an edge on a " + std::string(c->DynamicType()->Name()) + " from " +
+                       std::to_string(first) + " to " + std::to_string(last) + " (error " +
+                       std::to_string(int(mk.Error())) + ")");
+  return mk.Edge();
+}
+
+/// The centre O of the sphere about a point of the rotation axis on which a circle lies (its axis
+/// meets the rotation axis there), or false.
+bool sphere_centre_on_axis(const gp_Circ& circ, const gp_Ax1& axis, double tol, gp_Pnt* centre) {
   const gp_Dir w = axis.Direction(), n = circ.Axis().Direction();
-  if (gp_Vec(n).Crossed(gp_Vec(w)).Magnitude() < 1e-9) return {};  // perpendicular to the axis: planar
+  if (gp_Vec(n).Crossed(gp_Vec(w)).Magnitude() < 1e-9) return false;  // perpendicular to the axis: planar
   // closest points of the circle's axis line C + s n and the rotation axis P + t w
   const gp_Pnt C = circ.Location(), P = axis.Location();
   const gp_Vec d(P, C);
@@ -123,9 +133,24 @@ std::vector<TopoDS_Face> sphere_zone(const gp_Circ& circ, const gp_Pnt& a, const
   const double sn = (nw * d.Dot(gp_Vec(w)) - d.Dot(gp_Vec(n))) / den;
   const gp_Pnt onC = C.Translated(gp_Vec(n) * sn);
   const gp_Pnt O = P.Translated(gp_Vec(w) * gp_Vec(P, onC).Dot(gp_Vec(w)));
+  // (a circle recognised from fitted points misses the axis by its fitting error)
   const double scale = 1 + circ.Radius() + d.Magnitude();
-  if (onC.Distance(O) > 1e-12 * scale) return {};
-  const double R = std::sqrt(circ.Radius() * circ.Radius() + C.SquareDistance(O));
+  if (onC.Distance(O) > std::max(1e-12 * scale, 0.01 * tol)) return false;
+  *centre = O;
+  return true;
+}
+
+/// A circle whose axis meets the rotation axis at O lies on the sphere about O through it. A whole
+/// turn of an arc of it (its axial coordinate monotonic) sweeps the zone of that sphere between
+/// the latitudes of the arc's ends: returned as quarter-turn faces of one spherical surface, with
+/// exact iso-parametric edges, instead of general surfaces of revolution (which the arrangement
+/// intersects by marching). Empty when the circle lies on no such sphere.
+std::vector<TopoDS_Face> sphere_zone(const gp_Circ& circ, const gp_Pnt& a, const gp_Pnt& b, const gp_Ax1& axis,
+                                     double tol) {
+  const gp_Dir w = axis.Direction();
+  gp_Pnt O;
+  if (!sphere_centre_on_axis(circ, axis, tol, &O)) return {};
+  const double R = std::sqrt(circ.Radius() * circ.Radius() + circ.Location().SquareDistance(O));
   auto latitude = [&](const gp_Pnt& x) {
     return std::asin(std::clamp(gp_Vec(O, x).Dot(gp_Vec(w)) / R, -1.0, 1.0));
   };
@@ -135,23 +160,130 @@ std::vector<TopoDS_Face> sphere_zone(const gp_Circ& circ, const gp_Pnt& a, const
   // spherical surface loops in ShapeUpgrade_UnifySameDomain)
   if (va < -M_PI / 2 + 1e-7 || vb > M_PI / 2 - 1e-7) return {};
   gp_Dir xd = w.IsParallel(gp::DX(), 1e-3) ? gp_Dir(gp_Vec(w).Crossed(gp::DY())) : gp_Dir(gp_Vec(w).Crossed(gp::DX()));
-  Handle(Geom_SphericalSurface) sphere = new Geom_SphericalSurface(gp_Ax3(O, w, xd), R);
   std::vector<TopoDS_Face> out;
   for (int k = 0; k < 4; ++k) {
-    BRepBuilderAPI_MakeFace mf(sphere, k * M_PI / 2, (k + 1) * M_PI / 2, va, vb, tol);
+    // each quarter on its own copy of the sphere, turned to start at its u = 0: faces meeting
+    // across a surface's seam come out of the arrangement with pcurves on the wrong side of it
+    Handle(Geom_SphericalSurface) sphere =
+        new Geom_SphericalSurface(gp_Ax3(O, w, xd.Rotated(gp_Ax1(O, w), k * M_PI / 2)), R);
+    BRepBuilderAPI_MakeFace mf(sphere, 0, M_PI / 2, va, vb, tol);
     if (!mf.IsDone()) return {};
     out.push_back(mf.Face());
   }
   return out;
 }
 
-TopoDS_Edge edge_of(const Handle(Geom_Curve)& c, double first, double last) {
-  BRepBuilderAPI_MakeEdge mk(c, first, last);
-  if (!mk.IsDone())
-    throw ComputeError("could not build an edge on a " + std::string(c->DynamicType()->Name()) + " from " +
-                       std::to_string(first) + " to " + std::to_string(last) + " (error " +
-                       std::to_string(int(mk.Error())) + ")");
-  return mk.Edge();
+/// An arc of a circle in a plane through the rotation axis, its centre off the axis by more than
+/// its radius, sweeps a piece of the torus about the axis through it: returned as one face of that
+/// torus per piece of at most a quarter turn, bounded by iso-parametric lines (instead of general
+/// surfaces of revolution, which the arrangement intersects by marching). Empty otherwise.
+std::vector<TopoDS_Face> torus_piece(const Handle(Geom_Circle)& c, double first, double last, const ScrewJoint& j,
+                                     double T, double tol) {
+  const gp_Circ circ = c->Circ();
+  const gp_Vec w = to_vec(j.direction).Normalized(), n(circ.Axis().Direction());
+  const gp_Pnt P = to_pnt(j.point), C = circ.Location();
+  // (a circle recognised from fitted points is off the plane by its fitting error)
+  if (std::abs(n.Dot(w)) * circ.Radius() > 0.01 * tol || std::abs(gp_Vec(P, C).Dot(n)) > 0.01 * tol) return {};
+  const gp_Pnt foot = P.Translated(w * gp_Vec(P, C).Dot(w));
+  const gp_Vec x(foot, C);
+  const double major = x.Magnitude(), minor = circ.Radius();
+  if (major <= minor + tol) return {};
+  // torus angle v of a point of the circle: from the outward radial direction towards w
+  const gp_Vec xd = x / major;
+  auto angle = [&](const gp_Pnt& p) {
+    const gp_Vec d(C, p);
+    return std::atan2(d.Dot(w), d.Dot(xd));
+  };
+  double v0 = angle(c->Value(first));
+  const double span = last - first;  // the arc's angle
+  // direction of travel: the circle's own sense agrees with the torus's v when n = w x xd ...
+  const bool along = gp_Vec(n).Dot(w.Crossed(xd)) < 0;
+  // (v increases from xd towards w, i.e. counter-clockwise about xd x w = -(w x xd))
+  double va = v0, vb = v0 + span;
+  if (!along) {
+    va = v0 - span;
+    vb = v0;
+  }
+  const gp_Ax1 ax(foot, gp_Dir(w));
+  auto torus = [&](double turn) {
+    return new Geom_ToroidalSurface(gp_Ax3(foot, gp_Dir(w), gp_Dir(xd).Rotated(ax, turn)), major, minor);
+  };
+  if (torus(0)->Value(0, along ? vb : va).Distance(c->Value(last)) > 0.01 * tol + 1e-9 * (major + minor)) return {};
+  const int pieces = std::max(1, int(std::ceil(T / (M_PI / 2) - 1e-9)));
+  std::vector<TopoDS_Face> out;
+  for (int k = 0; k < pieces; ++k) {
+    // each piece on its own copy of the torus, turned to start at its u = 0 (see sphere_zone)
+    BRepBuilderAPI_MakeFace mf(torus(T * k / pieces), 0, T / pieces, va, vb, tol);
+    if (!mf.IsDone()) return {};
+    out.push_back(mf.Face());
+  }
+  return out;
+}
+
+/// Less than a whole turn of an arc of a circle lying on a sphere about a point O of the rotation
+/// axis (its axial coordinate monotonic, neither end on the axis) sweeps a patch of that sphere
+/// bounded by the arc at both ends of each piece of the turn and the parallels of the arc's ends:
+/// returned as one face of the sphere per piece of at most a quarter turn. Empty when the circle
+/// lies on no such sphere or a face does not come out valid with the area of the patch
+/// (R^2 dt (sin b - sin a) for latitudes a < b and a turn dt, whatever the arc's shape).
+std::vector<TopoDS_Face> sphere_patch(const Handle(Geom_Circle)& c, double first, double last, const ScrewJoint& j,
+                                      double T, double tol) {
+  const gp_Ax1 axis(to_pnt(j.point), gp_Dir(to_vec(j.direction)));
+  gp_Pnt O;
+  if (!sphere_centre_on_axis(c->Circ(), axis, tol, &O)) return {};
+  const gp_Dir w = axis.Direction();
+  const gp_Pnt a = c->Value(first), b = c->Value(last), m = c->Value(0.5 * (first + last));
+  const double R = O.Distance(a);
+  auto latitude = [&](const gp_Pnt& x) { return std::asin(std::clamp(gp_Vec(O, x).Dot(gp_Vec(w)) / R, -1.0, 1.0)); };
+  const double la = latitude(a), lb = latitude(b);
+  if (std::abs(lb - la) < 1e-9) return {};
+  if (std::max(std::abs(la), std::abs(lb)) > M_PI / 2 - 1e-7) return {};  // an end on the axis
+  const int pieces = std::max(1, int(std::ceil(T / (M_PI / 2) - 1e-9)));
+  const TopoDS_Edge arc = edge_of(c, first, last);
+  std::vector<TopoDS_Face> out;
+  for (int k = 0; k < pieces; ++k) {
+    const double t0 = T * k / pieces, t1 = T * (k + 1) / pieces;
+    gp_Trsf r0, r1, rm;
+    r0.SetRotation(axis, t0);
+    r1.SetRotation(axis, t1);
+    // the sphere's seam half a turn from the middle of the patch
+    rm.SetRotation(axis, 0.5 * (t0 + t1) + M_PI);
+    gp_Vec radial(O, m.Transformed(rm));
+    radial -= gp_Vec(w) * radial.Dot(gp_Vec(w));
+    if (radial.Magnitude() < 1e-9 * R) return {};
+    Handle(Geom_SphericalSurface) sphere = new Geom_SphericalSurface(gp_Ax3(O, w, gp_Dir(radial)), R);
+    const TopoDS_Edge e0 = TopoDS::Edge(BRepBuilderAPI_Transform(arc, r0, true).Shape());
+    const TopoDS_Edge e1 = TopoDS::Edge(BRepBuilderAPI_Transform(arc, r1, true).Shape());
+    const TopoDS_Edge pa = path_edge(to_eigen(a.Transformed(r0)), j, 0.0, t1 - t0, tol);
+    const TopoDS_Edge pb = path_edge(to_eigen(b.Transformed(r0)), j, 0.0, t1 - t0, tol);
+    if (pa.IsNull() || pb.IsNull()) return {};
+    BRepBuilderAPI_MakeWire mw;
+    mw.Add(e0);
+    mw.Add(pb);
+    mw.Add(TopoDS::Edge(e1.Reversed()));
+    mw.Add(TopoDS::Edge(pa.Reversed()));
+    if (!mw.IsDone()) return {};
+    // the wire runs counter-clockwise about the sphere's normal or clockwise, as the arc runs
+    // up or down: the orientation giving a positive area is kept
+    TopoDS_Face f;
+    GProp_GProps g;
+    for (const TopoDS_Wire& wire : {mw.Wire(), TopoDS::Wire(mw.Wire().Reversed())}) {
+      BRepBuilderAPI_MakeFace mf(sphere, wire, true);
+      if (!mf.IsDone()) return {};
+      ShapeFix_Face fix(mf.Face());
+      fix.SetPrecision(tol);
+      fix.Perform();
+      f = fix.Face();
+      g = GProp_GProps();
+      BRepGProp::SurfaceProperties(f, g, 1e-9);
+      if (g.Mass() > 0) break;
+    }
+    if (!BRepCheck_Analyzer(f).IsValid()) return {};
+    const double area = R * R * (t1 - t0) * std::abs(std::sin(lb) - std::sin(la));
+    if (std::abs(g.Mass() - area) > 1e-6 * area) return {};
+    out.push_back(f);
+  }
+  return out;
 }
 
 }  // namespace
@@ -236,7 +368,9 @@ std::vector<double> axial_breaks(const Handle(Geom_Curve)& c, double first, doub
       double m = 0.5 * (lo + hi), fm = da(m);
       if ((fm > 0) == (flo > 0)) { lo = m; flo = fm; } else hi = m;
     }
-    cuts.push_back(0.5 * (lo + hi));
+    const double cut = 0.5 * (lo + hi);
+    // an axial turn at an end (within rounding of the sampled derivative) makes no piece
+    if (cut - first > 1e-7 * (last - first) && last - cut > 1e-7 * (last - first)) cuts.push_back(cut);
   }
   return cuts;
 }
@@ -282,6 +416,14 @@ std::vector<TopoDS_Face> sweep_curve(const Handle(Geom_Curve)& c, double first, 
     if (c->IsKind(STANDARD_TYPE(Geom_Circle)) && T >= 2 * M_PI - 1e-12) {
       auto zone = sphere_zone(Handle(Geom_Circle)::DownCast(c)->Circ(), c->Value(first), c->Value(last), axis, tol);
       if (!zone.empty()) return zone;
+    }
+    if (c->IsKind(STANDARD_TYPE(Geom_Circle))) {
+      auto piece = torus_piece(Handle(Geom_Circle)::DownCast(c), first, last, j, T, tol);
+      if (!piece.empty()) return piece;
+    }
+    if (c->IsKind(STANDARD_TYPE(Geom_Circle)) && T < 2 * M_PI - 1e-12) {
+      auto patch = sphere_patch(Handle(Geom_Circle)::DownCast(c), first, last, j, T, tol);
+      if (!patch.empty()) return patch;
     }
     TopoDS_Edge e = edge_of(c, first, last);
     for (int k = 0; k < pieces; ++k) {
