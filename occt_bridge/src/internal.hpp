@@ -133,6 +133,10 @@ TopoDS_Shape graph_extrusion(const TopoDS_Face& face, const ScrewJoint& j, doubl
 /// Keeps OCCT's translators from printing to stdout (stdout carries the report).
 void quiet_occt();
 
+/// The shape with its same-domain faces merged (ShapeUpgrade_UnifySameDomain), when that gives a
+/// valid shape within `seconds`; a null shape otherwise (the caller keeps its own).
+TopoDS_Shape unify_faces(const TopoDS_Shape& shape, double seconds);
+
 /// Reads a STEP or BREP file into a shape. @throws InputError at `pointer` when unreadable.
 TopoDS_Shape read_shape_file(const std::string& path, const std::string& pointer);
 

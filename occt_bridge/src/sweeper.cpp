@@ -6,7 +6,6 @@
 #include <BRepAlgoAPI_Fuse.hxx>
 #include <BRepAlgoAPI_Splitter.hxx>
 #include <BRepBndLib.hxx>
-#include <BRepBuilderAPI_Copy.hxx>
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_Transform.hxx>
 #include <BRepCheck_Analyzer.hxx>
@@ -31,7 +30,6 @@
 #include <Geom_Line.hxx>
 #include <Geom_TrimmedCurve.hxx>
 #include <ShapeAnalysis_Shell.hxx>
-#include <ShapeUpgrade_UnifySameDomain.hxx>
 #include <Standard_Failure.hxx>
 #include <TColgp_Array1OfPnt.hxx>
 #include <TopExp.hxx>
@@ -811,20 +809,10 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
     if (!fuse.IsDone() || fuse.HasErrors()) return stage_fail("the union of the swept cells failed");
     result = fuse.Shape();
   }
-  // Merging same-domain faces is cosmetic: it works on a copy (it can change the shapes it is
-  // given, and fail half-way, as on spheres through their poles), and its result is used only
-  // when it is a valid solid.
-  try {
-    auto solids_valid = [](const TopoDS_Shape& sh) {
-      for (TopExp_Explorer ex(sh, TopAbs_SOLID); ex.More(); ex.Next())
-        if (!BRepCheck_Analyzer(ex.Current()).IsValid()) return false;
-      return BRepCheck_Analyzer(sh).IsValid();
-    };
-    ShapeUpgrade_UnifySameDomain unify(BRepBuilderAPI_Copy(result).Shape(), true, true, true);
-    unify.Build();
-    if (solids_valid(unify.Shape())) result = unify.Shape();
-  } catch (const Standard_Failure&) {
-  }
+  // Merging same-domain faces is cosmetic: its result is used only when it is a valid solid and
+  // comes within a time limit (generous against the arrangement's own time).
+  const TopoDS_Shape merged = unify_faces(result, std::max(10.0, 2 * since(t_arr)));
+  if (!merged.IsNull()) result = merged;
   sec["build"] += since(t_build);
   if (cand_out) *cand_out = std::move(cand);
   return result;
@@ -1159,13 +1147,19 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
           BRepClass3d_SolidClassifier cls(ex.Current(), x, ctol);
           inside = cls.State() != TopAbs_OUT;
         }
-        if (!inside) missing = "a point of the moved entity lies outside the solid";
+        if (!inside) {
+          std::ostringstream at;
+          at.precision(9);
+          at << "a point of the moved entity, (" << x.X() << ", " << x.Y() << ", " << x.Z() << "), lies outside the solid";
+          missing = at.str();
+        }
       }
     }
     rep.seconds["containment"] = since(t_cont);
 
     // Verdict.
-    const double vtol = std::max(10 * rep.tol_achieved, tol) * rep.area + 1e-9 * std::abs(rep.volume_brep);
+    // (a band as wide as the achieved tolerance over the whole boundary)
+    const double vtol = std::max(rep.tol_achieved, tol) * rep.area + 1e-9 * std::abs(rep.volume_brep);
     std::string why;
     if (!rep.valid) why = "the solid is not valid (BRepCheck)";
     else if (!rep.closed) why = "the solid is not closed";
