@@ -182,4 +182,13 @@ TEST_CASE("Kinds: circles turned about an axis in their plane or through their a
   types = surface_types(rim, "rim_quarter");
   CHECK(types[GeomAbs_Sphere] >= 1);
   CHECK(types.size() == 1);
+  // The whole circle: its two halves sweep overlapping patches, counted once. At height z the
+  // circle's points (3, +-sqrt(1 - z^2), z) sweep the longitudes [-g, g + pi / 2], g = atan(sqrt(1 -
+  // z^2) / 3), so the area is sqrt 10 * int (pi / 2 + 2 g) dz = pi (20 - 5 sqrt 10) (with
+  // int_0^1 atan(a sqrt(1 - z^2)) dz = (pi / 2)(sqrt(1 + a^2) - 1) / a).
+  auto full = run(std::string(R"js({"sweep": 1, "angles": "deg",
+      "entity": {"kind": "curve", "params": {"t": [0, 6.283185307179586]}, "xyz": ["3", "cos(t)", "sin(t)"]}, )js") +
+                  quarter_turn_z + "}");
+  REQUIRE(full.status == "ok");
+  CHECK(full.area == Approx(M_PI * (20 - 5 * std::sqrt(10.0))).epsilon(1e-6));
 }

@@ -3,6 +3,7 @@
 #include <BOPAlgo_MakerVolume.hxx>
 #include <BRepAdaptor_Curve.hxx>
 #include <BRepAdaptor_Curve2d.hxx>
+#include <BRepAlgoAPI_BuilderAlgo.hxx>
 #include <BRepAlgoAPI_Fuse.hxx>
 #include <BRepAlgoAPI_Splitter.hxx>
 #include <BRepBndLib.hxx>
@@ -949,6 +950,29 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
     TopoDS_Shape result = shape;
     if (dim < 3) {
       // A point sweeps a curve and a curve a surface: written as edges or faces, with no volume.
+      // The sweeps of a curve's pieces can overlap (two halves of a circle turned about an axis
+      // through its plane's normal): their general fuse keeps each part once, for the area too.
+      if (dim == 2) {
+        TopTools_ListOfShape faces;
+        for (TopExp_Explorer ex(result, TopAbs_FACE); ex.More(); ex.Next()) faces.Append(ex.Current());
+        if (faces.Extent() > 1) {
+          BRepAlgoAPI_BuilderAlgo gf;
+          gf.SetArguments(faces);
+          gf.SetRunParallel(false);
+          gf.SetFuzzyValue(1e-9 * size);
+          gf.SetNonDestructive(true);
+          gf.Build();
+          if (gf.IsDone() && !gf.HasErrors()) {
+            TopTools_IndexedMapOfShape unique;
+            TopExp::MapShapes(gf.Shape(), TopAbs_FACE, unique);
+            TopoDS_Compound comp;
+            BRep_Builder bb;
+            bb.MakeCompound(comp);
+            for (int k = 1; k <= unique.Extent(); ++k) bb.Add(comp, unique(k));
+            result = comp;
+          }
+        }
+      }
       BRepCheck_Analyzer check(result);
       rep.valid = check.IsValid();
       rep.closed = false;
