@@ -196,9 +196,9 @@ std::vector<TopoDS_Face> torus_piece(const Handle(Geom_Circle)& c, double first,
   };
   double v0 = angle(c->Value(first));
   const double span = last - first;  // the arc's angle
-  // direction of travel: the circle's own sense agrees with the torus's v when n = w x xd ...
-  const bool along = gp_Vec(n).Dot(w.Crossed(xd)) < 0;
-  // (v increases from xd towards w, i.e. counter-clockwise about xd x w = -(w x xd))
+  // direction of travel: v increases from xd towards w, counter-clockwise about xd x w; the
+  // circle runs counter-clockwise about its normal n, so the two agree when n is along xd x w
+  const bool along = gp_Vec(n).Dot(xd.Crossed(w)) > 0;
   double va = v0, vb = v0 + span;
   if (!along) {
     va = v0 - span;
