@@ -413,17 +413,14 @@ std::vector<TopoDS_Face> sweep_curve(const Handle(Geom_Curve)& c, double first, 
       return out;
     }
     const gp_Ax1 axis(to_pnt(j.point), gp_Dir(to_vec(j.direction)));
-    if (c->IsKind(STANDARD_TYPE(Geom_Circle)) && T >= 2 * M_PI - 1e-12) {
-      auto zone = sphere_zone(Handle(Geom_Circle)::DownCast(c)->Circ(), c->Value(first), c->Value(last), axis, tol);
-      if (!zone.empty()) return zone;
-    }
-    if (c->IsKind(STANDARD_TYPE(Geom_Circle))) {
-      auto piece = torus_piece(Handle(Geom_Circle)::DownCast(c), first, last, j, T, tol);
-      if (!piece.empty()) return piece;
-    }
-    if (c->IsKind(STANDARD_TYPE(Geom_Circle)) && T < 2 * M_PI - 1e-12) {
-      auto patch = sphere_patch(Handle(Geom_Circle)::DownCast(c), first, last, j, T, tol);
-      if (!patch.empty()) return patch;
+    if (const Handle(Geom_Circle) circle = Handle(Geom_Circle)::DownCast(c); !circle.IsNull()) {
+      // exact spheres and tori where the circle lies on one about the axis
+      const bool whole = T >= 2 * M_PI - 1e-12;
+      auto exact = whole ? sphere_zone(circle->Circ(), c->Value(first), c->Value(last), axis, tol)
+                         : std::vector<TopoDS_Face>{};
+      if (exact.empty()) exact = torus_piece(circle, first, last, j, T, tol);
+      if (exact.empty() && !whole) exact = sphere_patch(circle, first, last, j, T, tol);
+      if (!exact.empty()) return exact;
     }
     TopoDS_Edge e = edge_of(c, first, last);
     for (int k = 0; k < pieces; ++k) {

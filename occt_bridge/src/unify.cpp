@@ -80,7 +80,7 @@ TopoDS_Shape unify_faces(const TopoDS_Shape& shape, double seconds) {
     if (r <= 0) break;
     const ssize_t n = read(fds[0], buf, sizeof buf);
     if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) eof = n == 0;
+    eof = n == 0;
     if (n <= 0) break;
     text.append(buf, std::size_t(n));
   }
