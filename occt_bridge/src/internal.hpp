@@ -137,6 +137,13 @@ void quiet_occt();
 /// valid shape within `seconds`; a null shape otherwise (the caller keeps its own).
 TopoDS_Shape unify_faces(const TopoDS_Shape& shape, double seconds);
 
+/// The solid bounded by the split faces of an arrangement that separate the set (given by point
+/// membership) from its complement, each oriented outward; null when they bound no solid.
+/// `kept`, when given, receives the number of such faces.
+TopoDS_Shape solid_from_boundary_faces(const std::vector<TopoDS_Face>& split,
+                                       const std::function<bool(const Eigen::Vector3d&)>& member, double size,
+                                       int* kept = nullptr);
+
 /// Reads a STEP or BREP file into a shape. @throws InputError at `pointer` when unreadable.
 TopoDS_Shape read_shape_file(const std::string& path, const std::string& pointer);
 

@@ -1,5 +1,6 @@
 // The single-stage sweep pipeline: candidate varieties -> arrangement -> cell classification ->
 // solid -> validation and report.
+#include <BOPAlgo_Alerts.hxx>
 #include <BOPAlgo_MakerVolume.hxx>
 #include <BRepAdaptor_Curve.hxx>
 #include <BRepAdaptor_Curve2d.hxx>
@@ -43,6 +44,7 @@
 #include <algorithm>
 #include <chrono>
 #include <map>
+#include <optional>
 #include <cstdio>
 #include <cstdlib>
 #include <sstream>
@@ -123,17 +125,39 @@ Handle(Geom_Curve) trajectory(const ScrewJoint& j, const Eigen::Vector3d& x, dou
 }
 
 /// Membership by the trajectory: x is swept when y(0) is in the body, or y(t) meets its boundary.
-bool swept_by_trajectory(const TopoDS_Shape& body, bool solid, const ScrewJoint& j, double T,
-                         const Eigen::Vector3d& x, double tol) {
-  if (solid) {
-    BRepClass3d_SolidClassifier cls(body, to_pnt(x), tol);
-    if (cls.State() == TopAbs_IN) return true;
+/// The body's classifier and its faces' intersector are set up once for all points.
+class TrajectoryMembership {
+ public:
+  TrajectoryMembership(const TopoDS_Shape& body, bool solid, const ScrewJoint& j, double T, double tol)
+      : solid_(solid), j_(j), T_(T), tol_(tol) {
+    if (solid_) cls_.Load(body);
+    inter_.Load(body, tol);
   }
-  Handle(Geom_Curve) c = trajectory(j, x, T, tol);
-  if (c.IsNull()) return false;
-  BRepIntCurveSurface_Inter inter;
-  inter.Init(body, GeomAdaptor_Curve(c), tol);
-  return inter.More();
+  bool operator()(const Eigen::Vector3d& x) {
+    if (solid_) {
+      cls_.Perform(to_pnt(x), tol_);
+      if (cls_.State() == TopAbs_IN) return true;
+    }
+    Handle(Geom_Curve) c = trajectory(j_, x, T_, tol_);
+    if (c.IsNull()) return false;
+    inter_.Init(GeomAdaptor_Curve(c));
+    return inter_.More();
+  }
+
+ private:
+  bool solid_;
+  ScrewJoint j_;
+  double T_, tol_;
+  BRepClass3d_SolidClassifier cls_;
+  BRepIntCurveSurface_Inter inter_;
+};
+
+/// Whether OCCT's cell builder reported shells it could not orient.
+bool unable_to_orient(const BOPAlgo_MakerVolume& mv) {
+  const Message_ListOfAlert& alerts = mv.GetReport()->GetAlerts(Message_Warning);
+  for (Message_ListOfAlert::Iterator it(alerts); it.More(); it.Next())
+    if (it.Value()->IsInstance(STANDARD_TYPE(BOPAlgo_AlertUnableToOrientTheShape))) return true;
+  return false;
 }
 
 /// A point inside the solid cell, a small step inward from one of its faces.
@@ -634,10 +658,12 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
 
   // Point membership: the certified analytic test for primitive solids, else the trajectory test.
   const bool solid_entity = dim == 3;
+  std::optional<TrajectoryMembership> by_trajectory;
   auto member = [&](const Eigen::Vector3d& x) {
     if (sd) return in_swept_set(*sd, sd_motion, x, 1e-9 * size);
     if (pe) return in_swept_image(*pe, sd_motion, x, 1e-9 * size, size);
-    return swept_by_trajectory(body, solid_entity, j, T, x, 1e-9 * size);
+    if (!by_trajectory) by_trajectory.emplace(body, solid_entity, j, T, 1e-9 * size);
+    return (*by_trajectory)(x);
   };
 
   // Drop candidates that lie inside the swept set: sample points of the face's interior with
@@ -649,7 +675,11 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
     // point where an internal face touches the boundary) is tested again with the trajectory
     // test at an offset just above the geometric error.
     const double delta = 1e-4 * size, fine = std::max(1e-7 * size, 20 * fit_err);
-    auto traj = [&](const Eigen::Vector3d& x) { return swept_by_trajectory(body, solid_entity, j, T, x, 1e-10 * size); };
+    std::optional<TrajectoryMembership> fine_traj;
+    auto traj = [&](const Eigen::Vector3d& x) {
+      if (!fine_traj) fine_traj.emplace(body, solid_entity, j, T, 1e-10 * size);
+      return (*fine_traj)(x);
+    };
     std::vector<TopoDS_Face> keep;
     std::vector<int> keep_ids;
     for (std::size_t fi = 0; fi < cand.faces.size(); ++fi) {
@@ -772,8 +802,35 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
   }
   sec["arrangement"] += since(t_arr);
 
-  // Classify cells.
+  // OCCT's cell builder can leave shells it cannot orient and lose the cells they bound: then the
+  // solid is built from the split faces that separate the swept set from its complement, each
+  // classified by the membership of points just off both of its sides.
   const auto t_cls = Clock::now();
+  if (unable_to_orient(mv)) {
+    TopTools_IndexedMapOfShape split;
+    for (const auto& f : cand.faces) {
+      if (mv.Images().IsBound(f))
+        for (TopTools_ListIteratorOfListOfShape it(mv.Images().Find(f)); it.More(); it.Next()) split.Add(it.Value());
+      else
+        split.Add(f);
+    }
+    std::vector<TopoDS_Face> split_faces;
+    for (int k = 1; k <= split.Extent(); ++k) split_faces.push_back(TopoDS::Face(split(k)));
+    const TopoDS_Shape bounded = solid_from_boundary_faces(split_faces, member, size);
+    if (valid_and_closed(bounded)) {
+      int nsolids = 0;
+      for (TopExp_Explorer ex(bounded, TopAbs_SOLID); ex.More(); ex.Next()) ++nsolids;
+      rep.cells += nsolids;
+      sec["classification"] += since(t_cls);
+      const auto t_build = Clock::now();
+      const TopoDS_Shape merged = unify_faces(bounded, std::max(10.0, 2 * since(t_arr)));
+      sec["build"] += since(t_build);
+      if (cand_out) *cand_out = std::move(cand);
+      return merged.IsNull() ? bounded : merged;
+    }
+  }
+
+  // Classify cells.
   std::vector<TopoDS_Solid> kept;
   int ncells = 0;
   for (TopExp_Explorer ex(mv.Shape(), TopAbs_SOLID); ex.More(); ex.Next()) {
@@ -1102,8 +1159,9 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
         const ScrewJoint& j = motion.joints[0];
         const double T = std::min(j.hi - j.lo, j.type == JointType::Revolute ? 2 * M_PI : 1e300);
         TopoDS_Shape body = moved(moved(raw, motion.home), j.transform(j.lo));
+        TrajectoryMembership by_trajectory(body, rep.dimension == 3 && spec.entity.dimension() == 3, j, T, 1e-9 * size);
         mc = monte_carlo_volume(
-            [&](const Eigen::Vector3d& x) { return swept_by_trajectory(body, rep.dimension == 3 && spec.entity.dimension() == 3, j, T, x, 1e-9 * size); },
+            [&](const Eigen::Vector3d& x) { return by_trajectory(x); },
             box, std::min<std::size_t>(opt.mc_samples, 20000), opt.mc_seed);
       } else if (pe) {
         mc = monte_carlo_volume([&](const Eigen::Vector3d& x) { return in_swept_image(*pe, m, x, 1e-9 * size, size); },

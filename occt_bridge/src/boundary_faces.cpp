@@ -1,0 +1,92 @@
+// The swept solid from the split faces of an arrangement that separate the set from its
+// complement, for arrangements whose cells OCCT cannot build.
+#include <BOPAlgo_BuilderSolid.hxx>
+#include <BRepAdaptor_Surface.hxx>
+#include <BRepCheck_Analyzer.hxx>
+#include <BRepGProp.hxx>
+#include <BRepLProp_SLProps.hxx>
+#include <BRepTools.hxx>
+#include <BRepTopAdaptor_FClass2d.hxx>
+#include <BRep_Builder.hxx>
+#include <GProp_GProps.hxx>
+#include <ShapeAnalysis_Shell.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Compound.hxx>
+#include <TopoDS_Iterator.hxx>
+
+#include "internal.hpp"
+
+namespace sweep::occt {
+
+namespace {
+
+/// Which sides of the face are in the set: +1 the side its (oriented) normal points to, -1 the
+/// other side, 0 both or neither (not a boundary piece), by a vote of points across the face.
+int inside_side(const TopoDS_Face& f, const std::function<bool(const Eigen::Vector3d&)>& member, double delta) {
+  double u0, u1, v0, v1;
+  BRepTools::UVBounds(f, u0, u1, v0, v1);
+  BRepTopAdaptor_FClass2d fc(f, 1e-9);
+  BRepAdaptor_Surface S(f);
+  int plus = 0, minus = 0, other = 0, tested = 0;
+  for (double a : {0.5, 0.37, 0.63, 0.21, 0.79, 0.09, 0.91}) {
+    for (double b : {0.5, 0.41, 0.59, 0.27, 0.73, 0.13, 0.87}) {
+      if (tested == 5) break;
+      gp_Pnt2d uv(u0 + a * (u1 - u0), v0 + b * (v1 - v0));
+      if (fc.Perform(uv) != TopAbs_IN) continue;
+      BRepLProp_SLProps props(S, uv.X(), uv.Y(), 1, 1e-9);
+      if (!props.IsNormalDefined()) continue;
+      Eigen::Vector3d n = to_eigen(gp_Vec(props.Normal()));
+      if (f.Orientation() == TopAbs_REVERSED) n = -n;
+      const Eigen::Vector3d p = to_eigen(props.Value());
+      const bool in_plus = member(p + delta * n), in_minus = member(p - delta * n);
+      ++tested;
+      if (in_plus && !in_minus) ++plus;
+      else if (in_minus && !in_plus) ++minus;
+      else ++other;
+    }
+  }
+  if (plus > minus && plus > other) return 1;
+  if (minus > plus && minus > other) return -1;
+  return 0;
+}
+
+}  // namespace
+
+TopoDS_Shape solid_from_boundary_faces(const std::vector<TopoDS_Face>& split,
+                                       const std::function<bool(const Eigen::Vector3d&)>& member, double size,
+                                       int* kept_out) {
+  TopTools_ListOfShape bounding;
+  const double delta = 1e-5 * size;
+  for (const auto& f : split) {
+    const int side = inside_side(f, member, delta);
+    if (side == 0) continue;
+    // outward: the normal points away from the set
+    bounding.Append(side < 0 ? f : TopoDS::Face(f.Reversed()));
+  }
+  if (kept_out) *kept_out = bounding.Extent();
+  if (bounding.IsEmpty()) return {};
+  BOPAlgo_BuilderSolid bs;
+  bs.SetShapes(bounding);
+  bs.SetAvoidInternalShapes(true);
+  bs.SetRunParallel(false);
+  bs.Perform();
+  if (bs.HasErrors()) return {};
+  TopoDS_Compound comp;
+  BRep_Builder bb;
+  bb.MakeCompound(comp);
+  int nsolids = 0;
+  for (TopTools_ListIteratorOfListOfShape it(bs.Areas()); it.More(); it.Next()) {
+    GProp_GProps g;
+    BRepGProp::VolumeProperties(it.Value(), g);
+    if (g.Mass() <= 0) return {};  // a hole shell left without its solid
+    bb.Add(comp, it.Value());
+    ++nsolids;
+  }
+  if (nsolids == 0) return {};
+  TopoDS_Shape result = comp;
+  if (nsolids == 1) result = TopoDS_Iterator(comp).Value();
+  return result;
+}
+
+}  // namespace sweep::occt

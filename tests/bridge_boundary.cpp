@@ -1,0 +1,92 @@
+// The solid built from the split faces of an arrangement that separate a set from its complement.
+#include <BOPAlgo_Builder.hxx>
+#include <BRepCheck_Analyzer.hxx>
+#include <BRepGProp.hxx>
+#include <BRepPrimAPI_MakeBox.hxx>
+#include <GProp_GProps.hxx>
+#include <TopExp.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
+#include <TopoDS.hxx>
+#include <catch2/catch.hpp>
+
+#include "internal.hpp"
+
+namespace {
+
+using Pred = std::function<bool(const Eigen::Vector3d&)>;
+
+bool in_box(const Eigen::Vector3d& x, double lo, double hi) {
+  return (x.array() > lo).all() && (x.array() < hi).all();
+}
+
+/// The split faces of the general fuse of the faces of boxes [lo, hi]^3.
+std::vector<TopoDS_Face> split_faces(const std::vector<std::pair<double, double>>& boxes) {
+  BOPAlgo_Builder gf;
+  for (const auto& [lo, hi] : boxes) {
+    const TopoDS_Shape b = BRepPrimAPI_MakeBox(gp_Pnt(lo, lo, lo), gp_Pnt(hi, hi, hi)).Shape();
+    for (TopExp_Explorer ex(b, TopAbs_FACE); ex.More(); ex.Next()) gf.AddArgument(ex.Current());
+  }
+  gf.SetRunParallel(false);
+  gf.Perform();
+  REQUIRE_FALSE(gf.HasErrors());
+  TopTools_IndexedMapOfShape faces;
+  TopExp::MapShapes(gf.Shape(), TopAbs_FACE, faces);
+  std::vector<TopoDS_Face> out;
+  for (int k = 1; k <= faces.Extent(); ++k) out.push_back(TopoDS::Face(faces(k)));
+  return out;
+}
+
+double volume(const TopoDS_Shape& s) {
+  GProp_GProps g;
+  BRepGProp::VolumeProperties(s, g);
+  return g.Mass();
+}
+
+int count(const TopoDS_Shape& s, TopAbs_ShapeEnum type) {
+  int n = 0;
+  for (TopExp_Explorer ex(s, type); ex.More(); ex.Next()) ++n;
+  return n;
+}
+
+}  // namespace
+
+TEST_CASE("Boundary faces: the union of two overlapping boxes keeps only the faces between inside and outside") {
+  const auto faces = split_faces({{0, 2}, {1, 3}});
+  const Pred member = [](const Eigen::Vector3d& x) { return in_box(x, 0, 2) || in_box(x, 1, 3); };
+  int kept = 0;
+  const TopoDS_Shape s = sweep::occt::solid_from_boundary_faces(faces, member, 3, &kept);
+  REQUIRE_FALSE(s.IsNull());
+  CHECK(BRepCheck_Analyzer(s).IsValid());
+  CHECK(count(s, TopAbs_SOLID) == 1);
+  // of each box: its three faces away from the other whole, and of the three facing into it the
+  // L-shaped pieces (the unit squares cut out of them lie inside the other box)
+  CHECK(kept == 2 * (3 + 3));
+  CHECK(volume(s) == Approx(8 + 8 - 1).epsilon(1e-12));
+}
+
+TEST_CASE("Boundary faces: a cavity becomes a hole of the solid around it; disjoint parts stay apart") {
+  {
+    const auto faces = split_faces({{0, 4}, {1, 2}});
+    const Pred member = [](const Eigen::Vector3d& x) { return in_box(x, 0, 4) && !in_box(x, 1, 2); };
+    const TopoDS_Shape s = sweep::occt::solid_from_boundary_faces(faces, member, 4);
+    REQUIRE_FALSE(s.IsNull());
+    CHECK(BRepCheck_Analyzer(s).IsValid());
+    CHECK(count(s, TopAbs_SOLID) == 1);
+    CHECK(count(s, TopAbs_SHELL) == 2);
+    CHECK(volume(s) == Approx(64 - 1).epsilon(1e-12));
+  }
+  {
+    const auto faces = split_faces({{0, 1}, {2, 4}});
+    const Pred member = [](const Eigen::Vector3d& x) { return in_box(x, 0, 1) || in_box(x, 2, 4); };
+    const TopoDS_Shape s = sweep::occt::solid_from_boundary_faces(faces, member, 4);
+    REQUIRE_FALSE(s.IsNull());
+    CHECK(count(s, TopAbs_SOLID) == 2);
+    CHECK(volume(s) == Approx(1 + 8).epsilon(1e-12));
+  }
+  {  // a set with no boundary among the faces gives no solid
+    const auto faces = split_faces({{0, 1}});
+    const Pred nothing = [](const Eigen::Vector3d&) { return false; };
+    CHECK(sweep::occt::solid_from_boundary_faces(faces, nothing, 1).IsNull());
+  }
+}
