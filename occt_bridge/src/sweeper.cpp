@@ -40,15 +40,19 @@
 #include <TopTools_ListOfShape.hxx>
 #include <TopoDS.hxx>
 #include <TopoDS_Compound.hxx>
-#include <random>
 #include <algorithm>
+#include <atomic>
 #include <chrono>
-#include <map>
-#include <optional>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <random>
 #include <sstream>
-#include <cmath>
+#include <thread>
 
 #include "internal.hpp"
 #include "sweep/error.hpp"
@@ -134,14 +138,15 @@ class TrajectoryMembership {
     inter_.Load(body, tol);
   }
   bool operator()(const Eigen::Vector3d& x) {
-    if (solid_) {
-      cls_.Perform(to_pnt(x), tol_);
-      if (cls_.State() == TopAbs_IN) return true;
-    }
+    // The trajectory meets the body's boundary, or lies wholly inside it (then so does y(0)).
     Handle(Geom_Curve) c = trajectory(j_, x, T_, tol_);
-    if (c.IsNull()) return false;
-    inter_.Init(GeomAdaptor_Curve(c));
-    return inter_.More();
+    if (!c.IsNull()) {
+      inter_.Init(GeomAdaptor_Curve(c));
+      if (inter_.More()) return true;
+    }
+    if (!solid_) return false;
+    cls_.Perform(to_pnt(x), tol_);
+    return cls_.State() == TopAbs_IN;
   }
 
  private:
@@ -151,6 +156,36 @@ class TrajectoryMembership {
   BRepClass3d_SolidClassifier cls_;
   BRepIntCurveSurface_Inter inter_;
 };
+
+/// Runs work(i) for every i in [0, n) on the machine's cores (at most eight threads). Each thread
+/// gets its own worker from make(): OCCT's classifiers and intersectors are not shared between
+/// threads. The first exception thrown by a worker is rethrown.
+void parallel_for(std::size_t n, const std::function<std::function<void(std::size_t)>()>& make) {
+  const std::size_t nt = std::min<std::size_t>({std::max(1u, std::thread::hardware_concurrency()), 8, n});
+  if (nt <= 1) {
+    const auto work = make();
+    for (std::size_t i = 0; i < n; ++i) work(i);
+    return;
+  }
+  std::atomic<std::size_t> next{0};
+  std::exception_ptr error;
+  std::mutex error_mutex;
+  auto run = [&] {
+    try {
+      const auto work = make();
+      for (std::size_t i = next++; i < n; i = next++) work(i);
+    } catch (...) {
+      std::lock_guard<std::mutex> lock(error_mutex);
+      if (!error) error = std::current_exception();
+      next = n;
+    }
+  };
+  std::vector<std::thread> threads;
+  for (std::size_t t = 1; t < nt; ++t) threads.emplace_back(run);
+  run();
+  for (auto& t : threads) t.join();
+  if (error) std::rethrow_exception(error);
+}
 
 /// Whether OCCT's cell builder reported shells it could not orient.
 bool unable_to_orient(const BOPAlgo_MakerVolume& mv) {
@@ -656,57 +691,63 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
   rep.varieties += cand.varieties;
   sec["varieties"] += since(t_cand);
 
-  // Point membership: the certified analytic test for primitive solids, else the trajectory test.
+  // Point membership: the certified analytic test for primitive solids, else the trajectory test
+  // (which keeps OCCT state: one per thread, made by member_test).
   const bool solid_entity = dim == 3;
-  std::optional<TrajectoryMembership> by_trajectory;
-  auto member = [&](const Eigen::Vector3d& x) {
-    if (sd) return in_swept_set(*sd, sd_motion, x, 1e-9 * size);
-    if (pe) return in_swept_image(*pe, sd_motion, x, 1e-9 * size, size);
-    if (!by_trajectory) by_trajectory.emplace(body, solid_entity, j, T, 1e-9 * size);
-    return (*by_trajectory)(x);
+  auto member_test = [&](double tol_factor) -> std::function<bool(const Eigen::Vector3d&)> {
+    if (sd) return [&](const Eigen::Vector3d& x) { return in_swept_set(*sd, sd_motion, x, 1e-9 * size); };
+    if (pe) return [&](const Eigen::Vector3d& x) { return in_swept_image(*pe, sd_motion, x, 1e-9 * size, size); };
+    auto by_trajectory = std::make_shared<std::unique_ptr<TrajectoryMembership>>();
+    return [&, by_trajectory, tol_factor](const Eigen::Vector3d& x) {
+      if (!*by_trajectory)
+        *by_trajectory = std::make_unique<TrajectoryMembership>(body, solid_entity, j, T, tol_factor * size);
+      return (**by_trajectory)(x);
+    };
   };
+  const auto member = member_test(1e-9);
 
   // Drop candidates that lie inside the swept set: sample points of the face's interior with
   // both sides in the set. Keeping a face is always safe; dropping internal ones spares the
-  // arrangement needless (often tangential) intersections.
+  // arrangement needless (often tangential) intersections. Faces are tested in parallel.
   {
     const auto t_prune = Clock::now();
     // A quick test with a comfortable offset; a sample that fails it (near the boundary, or at a
     // point where an internal face touches the boundary) is tested again with the trajectory
     // test at an offset just above the geometric error.
     const double delta = 1e-4 * size, fine = std::max(1e-7 * size, 20 * fit_err);
-    std::optional<TrajectoryMembership> fine_traj;
-    auto traj = [&](const Eigen::Vector3d& x) {
-      if (!fine_traj) fine_traj.emplace(body, solid_entity, j, T, 1e-10 * size);
-      return (*fine_traj)(x);
-    };
+    std::vector<char> internal_face(cand.faces.size(), 0);
+    parallel_for(cand.faces.size(), [&]() -> std::function<void(std::size_t)> {
+      const auto quick = member_test(1e-9), traj = member_test(1e-10);
+      return [&, quick, traj](std::size_t fi) {
+        const TopoDS_Face& f = cand.faces[fi];
+        double u0, u1, v0, v1;
+        BRepTools::UVBounds(f, u0, u1, v0, v1);
+        BRepTopAdaptor_FClass2d fc(f, 1e-9);
+        BRepAdaptor_Surface S(f);
+        const int n = 7;
+        int tested = 0;
+        bool internal = true;
+        for (int a = 0; a < n && internal; ++a)
+          for (int b = 0; b < n && internal; ++b) {
+            gp_Pnt2d uv(u0 + (u1 - u0) * (a + 0.5) / n, v0 + (v1 - v0) * (b + 0.5) / n);
+            if (fc.Perform(uv) != TopAbs_IN) continue;
+            BRepLProp_SLProps props(S, uv.X(), uv.Y(), 1, 1e-9);
+            if (!props.IsNormalDefined()) continue;
+            Eigen::Vector3d p = to_eigen(props.Value()), nn = to_eigen(gp_Vec(props.Normal()));
+            ++tested;
+            if ((!quick(p + delta * nn) || !quick(p - delta * nn)) && (!traj(p + fine * nn) || !traj(p - fine * nn)))
+              internal = false;
+          }
+        internal_face[fi] = internal && tested >= 4;
+      };
+    });
     std::vector<TopoDS_Face> keep;
     std::vector<int> keep_ids;
-    for (std::size_t fi = 0; fi < cand.faces.size(); ++fi) {
-      const TopoDS_Face& f = cand.faces[fi];
-      double u0, u1, v0, v1;
-      BRepTools::UVBounds(f, u0, u1, v0, v1);
-      BRepTopAdaptor_FClass2d fc(f, 1e-9);
-      BRepAdaptor_Surface S(f);
-      const int n = 7;
-      int tested = 0;
-      bool internal = true;
-      for (int a = 0; a < n && internal; ++a)
-        for (int b = 0; b < n && internal; ++b) {
-          gp_Pnt2d uv(u0 + (u1 - u0) * (a + 0.5) / n, v0 + (v1 - v0) * (b + 0.5) / n);
-          if (fc.Perform(uv) != TopAbs_IN) continue;
-          BRepLProp_SLProps props(S, uv.X(), uv.Y(), 1, 1e-9);
-          if (!props.IsNormalDefined()) continue;
-          Eigen::Vector3d p = to_eigen(props.Value()), nn = to_eigen(gp_Vec(props.Normal()));
-          ++tested;
-          if ((!member(p + delta * nn) || !member(p - delta * nn)) && (!traj(p + fine * nn) || !traj(p - fine * nn)))
-            internal = false;
-        }
-      if (!internal || tested < 4) {
-        keep.push_back(f);
+    for (std::size_t fi = 0; fi < cand.faces.size(); ++fi)
+      if (!internal_face[fi]) {
+        keep.push_back(cand.faces[fi]);
         keep_ids.push_back(cand.ids[fi]);
       }
-    }
     sec["pruning"] += since(t_prune);
     cand.faces.swap(keep);
     cand.ids.swap(keep_ids);
