@@ -69,6 +69,8 @@ nlohmann::json Report::to_json() const {
   if (has_mc) {
     j["volume"]["monte_carlo"] = volume_mc;
     j["volume"]["monte_carlo_stderr"] = volume_mc_stderr;
+    j["volume"]["monte_carlo_samples"] = mc_samples;
+    if (mc_compared) j["volume"]["monte_carlo_mismatch"] = volume_mc_mismatch;
   }
   j["area"] = area;
   j["centroid"] = {centroid[0], centroid[1], centroid[2]};
@@ -1092,27 +1094,35 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
 
     // Validation.
     const auto t_val = Clock::now();
-    BRepCheck_Analyzer check(result);
-    rep.valid = check.IsValid();
-    // Closed: every shell of every solid has each edge used twice, with opposite orientations.
-    // Checked solid by solid, so solids that touch along an edge do not count as open.
-    int nsolids = 0;
-    rep.closed = true;
-    for (TopExp_Explorer ex(result, TopAbs_SOLID); ex.More(); ex.Next()) {
-      ++nsolids;
-      ShapeAnalysis_Shell sas;
-      sas.LoadShells(ex.Current());
-      if (sas.CheckOrientedShells(ex.Current(), true) || sas.HasFreeEdges()) rep.closed = false;
-    }
-    rep.closed = rep.closed && nsolids > 0;
-    for (TopExp_Explorer ex(result, TopAbs_FACE); ex.More(); ex.Next()) ++rep.faces;
-    // OCCT's adaptive integration for the volume; the divergence volume, computed independently
-    // in the faces' parameter domains, also gives the area at the same quadrature points.
+    // OCCT's adaptive integration for the volume (on one thread, with the validity checks), and the
+    // divergence volume, computed independently in the faces' parameter domains, which also gives
+    // the area at the same quadrature points (on another): both only read the shape.
     GProp_GProps gv;
-    BRepGProp::VolumeProperties(result, gv, 1e-10);
+    parallel_for(2, [&]() -> std::function<void(std::size_t)> {
+      return [&](std::size_t task) {
+        if (task == 1) {
+          rep.volume_divergence = divergence_volume(result, &rep.area);
+          return;
+        }
+        BRepCheck_Analyzer check(result);
+        rep.valid = check.IsValid();
+        // Closed: every shell of every solid has each edge used twice, with opposite orientations.
+        // Checked solid by solid, so solids that touch along an edge do not count as open.
+        int nsolids = 0;
+        rep.closed = true;
+        for (TopExp_Explorer ex(result, TopAbs_SOLID); ex.More(); ex.Next()) {
+          ++nsolids;
+          ShapeAnalysis_Shell sas;
+          sas.LoadShells(ex.Current());
+          if (sas.CheckOrientedShells(ex.Current(), true) || sas.HasFreeEdges()) rep.closed = false;
+        }
+        rep.closed = rep.closed && nsolids > 0;
+        BRepGProp::VolumeProperties(result, gv, 1e-10);
+      };
+    });
+    for (TopExp_Explorer ex(result, TopAbs_FACE); ex.More(); ex.Next()) ++rep.faces;
     rep.volume_brep = gv.Mass();
     set_centroid_and_box(rep, gv.CentreOfMass(), result);
-    rep.volume_divergence = divergence_volume(result, &rep.area);
     rep.tol_achieved = std::max(fit_err, max_tolerance(result));
     rep.seconds["validation"] = since(t_val);
 
@@ -1188,6 +1198,14 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
       box.extend(box.min() - Eigen::Vector3d::Constant(0.01 * size));
       box.extend(box.max() + Eigen::Vector3d::Constant(0.01 * size));
       MonteCarloResult mc;
+      // Under chains, where the independent membership is a search over the joint and entity
+      // parameters (far slower than classifying a point against the solid), each sample is also
+      // classified against the solid: where the two disagree, one of them is wrong.
+      BRepClass3d_SolidClassifier in_result(result);
+      const auto in_solid = [&](const Eigen::Vector3d& x) {
+        in_result.Perform(to_pnt(x), 1e-9 * size);
+        return in_result.State() == TopAbs_IN;
+      };
       // For the membership searches: a revolute joint beyond a full turn covers nothing new.
       Motion m = motion;
       for (auto& jj : m.joints)
@@ -1206,7 +1224,7 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
             box, std::min<std::size_t>(opt.mc_samples, 20000), opt.mc_seed);
       } else if (pe) {
         mc = monte_carlo_volume([&](const Eigen::Vector3d& x) { return in_swept_image(*pe, m, x, 1e-9 * size, size); },
-                                box, chain_samples, opt.mc_seed);
+                                box, chain_samples, opt.mc_seed, in_solid);
       } else {
         throw ComputeError("--verify needs a primitive solid, a point, a curve or a surface entity for motions of "
                            "several joints");
@@ -1214,6 +1232,10 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
       rep.has_mc = true;
       rep.volume_mc = mc.volume;
       rep.volume_mc_stderr = mc.stderr_;
+      rep.mc_samples = mc.samples;
+      rep.mc_compared = !sd && n > 1;
+      rep.mc_mismatches = mc.mismatches;
+      rep.volume_mc_mismatch = mc.mismatch_volume;
       rep.seconds["monte_carlo"] = since(t_mc);
     }
 

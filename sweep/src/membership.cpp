@@ -320,14 +320,16 @@ bool in_swept_image(const ParametricEntity& e, const Motion& motion, const Vecto
 
 MonteCarloResult monte_carlo_volume(const std::function<bool(const Vector3d&)>& inside,
                                     const Eigen::AlignedBox3d& box, std::size_t samples,
-                                    std::uint64_t seed) {
+                                    std::uint64_t seed, const std::function<bool(const Vector3d&)>& compare) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  std::size_t hits = 0;
+  std::size_t hits = 0, mismatches = 0;
   const Vector3d lo = box.min(), ext = box.sizes();
   for (std::size_t k = 0; k < samples; ++k) {
     Vector3d p(lo.x() + ext.x() * u(rng), lo.y() + ext.y() * u(rng), lo.z() + ext.z() * u(rng));
-    if (inside(p)) ++hits;
+    const bool in = inside(p);
+    if (in) ++hits;
+    if (compare && compare(p) != in) ++mismatches;
   }
   const double vbox = ext.prod();
   const double f = samples ? double(hits) / double(samples) : 0.0;
@@ -335,6 +337,8 @@ MonteCarloResult monte_carlo_volume(const std::function<bool(const Vector3d&)>& 
   r.samples = samples;
   r.volume = vbox * f;
   r.stderr_ = samples ? vbox * std::sqrt(f * (1.0 - f) / double(samples)) : 0.0;
+  r.mismatches = mismatches;
+  r.mismatch_volume = samples ? vbox * double(mismatches) / double(samples) : 0.0;
   return r;
 }
 

@@ -58,6 +58,12 @@ struct Report {
   double volume_brep = 0, volume_divergence = 0;
   bool has_mc = false;
   double volume_mc = 0, volume_mc_stderr = 0;
+  // samples of the Monte Carlo volume; under chains also the estimated volume of the symmetric
+  // difference between the solid and the independent membership (from the samples where the two
+  // disagree)
+  bool mc_compared = false;
+  std::size_t mc_samples = 0, mc_mismatches = 0;
+  double volume_mc_mismatch = 0;
   double area = 0;
   double centroid[3] = {0, 0, 0};
   double bbox_min[3] = {0, 0, 0}, bbox_max[3] = {0, 0, 0};

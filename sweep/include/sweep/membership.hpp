@@ -74,14 +74,19 @@ bool slides_along_itself(const EntitySpec& e, const Eigen::Isometry3d& G, const 
 bool in_swept_image(const ParametricEntity& entity, const Motion& motion, const Eigen::Vector3d& x,
                     double resolution, double scale);
 
-/// Monte Carlo estimate of a volume from a membership test inside an axis-aligned box.
+/// Monte Carlo estimate of a volume from a membership test inside an axis-aligned box. With
+/// `compare` (a second membership, e.g. a computed solid's), the samples where the two disagree
+/// are counted too: `mismatch_volume` estimates the volume of the symmetric difference.
 struct MonteCarloResult {
   double volume = 0.0;
   double stderr_ = 0.0;
   std::size_t samples = 0;
+  std::size_t mismatches = 0;
+  double mismatch_volume = 0.0;
 };
 MonteCarloResult monte_carlo_volume(const std::function<bool(const Eigen::Vector3d&)>& inside,
                                     const Eigen::AlignedBox3d& box, std::size_t samples,
-                                    std::uint64_t seed = 12345);
+                                    std::uint64_t seed = 12345,
+                                    const std::function<bool(const Eigen::Vector3d&)>& compare = {});
 
 }  // namespace sweep
