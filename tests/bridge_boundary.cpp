@@ -14,7 +14,12 @@
 
 namespace {
 
-using Pred = std::function<bool(const Eigen::Vector3d&)>;
+using Pred = sweep::occt::PointTest;
+
+/// The same test for every thread.
+sweep::occt::PointTestMaker each(const Pred& p) {
+  return [p] { return p; };
+}
 
 bool in_box(const Eigen::Vector3d& x, double lo, double hi) {
   return (x.array() > lo).all() && (x.array() < hi).all();
@@ -55,7 +60,7 @@ TEST_CASE("Boundary faces: the union of two overlapping boxes keeps only the fac
   const auto faces = split_faces({{0, 2}, {1, 3}});
   const Pred member = [](const Eigen::Vector3d& x) { return in_box(x, 0, 2) || in_box(x, 1, 3); };
   int kept = 0;
-  const TopoDS_Shape s = sweep::occt::solid_from_boundary_faces(faces, member, 3, &kept);
+  const TopoDS_Shape s = sweep::occt::solid_from_boundary_faces(faces, each(member), 3, &kept);
   REQUIRE_FALSE(s.IsNull());
   CHECK(BRepCheck_Analyzer(s).IsValid());
   CHECK(count(s, TopAbs_SOLID) == 1);
@@ -69,7 +74,7 @@ TEST_CASE("Boundary faces: a cavity becomes a hole of the solid around it; disjo
   {
     const auto faces = split_faces({{0, 4}, {1, 2}});
     const Pred member = [](const Eigen::Vector3d& x) { return in_box(x, 0, 4) && !in_box(x, 1, 2); };
-    const TopoDS_Shape s = sweep::occt::solid_from_boundary_faces(faces, member, 4);
+    const TopoDS_Shape s = sweep::occt::solid_from_boundary_faces(faces, each(member), 4);
     REQUIRE_FALSE(s.IsNull());
     CHECK(BRepCheck_Analyzer(s).IsValid());
     CHECK(count(s, TopAbs_SOLID) == 1);
@@ -79,7 +84,7 @@ TEST_CASE("Boundary faces: a cavity becomes a hole of the solid around it; disjo
   {
     const auto faces = split_faces({{0, 1}, {2, 4}});
     const Pred member = [](const Eigen::Vector3d& x) { return in_box(x, 0, 1) || in_box(x, 2, 4); };
-    const TopoDS_Shape s = sweep::occt::solid_from_boundary_faces(faces, member, 4);
+    const TopoDS_Shape s = sweep::occt::solid_from_boundary_faces(faces, each(member), 4);
     REQUIRE_FALSE(s.IsNull());
     CHECK(count(s, TopAbs_SOLID) == 2);
     CHECK(volume(s) == Approx(1 + 8).epsilon(1e-12));
@@ -87,6 +92,6 @@ TEST_CASE("Boundary faces: a cavity becomes a hole of the solid around it; disjo
   {  // a set with no boundary among the faces gives no solid
     const auto faces = split_faces({{0, 1}});
     const Pred nothing = [](const Eigen::Vector3d&) { return false; };
-    CHECK(sweep::occt::solid_from_boundary_faces(faces, nothing, 1).IsNull());
+    CHECK(sweep::occt::solid_from_boundary_faces(faces, each(nothing), 1).IsNull());
   }
 }

@@ -23,7 +23,7 @@ namespace {
 
 /// Which sides of the face are in the set: +1 the side its (oriented) normal points to, -1 the
 /// other side, 0 both or neither (not a boundary piece), by a vote of points across the face.
-int inside_side(const TopoDS_Face& f, const std::function<bool(const Eigen::Vector3d&)>& member, double delta) {
+int inside_side(const TopoDS_Face& f, const PointTest& member, double delta) {
   double u0, u1, v0, v1;
   BRepTools::UVBounds(f, u0, u1, v0, v1);
   BRepTopAdaptor_FClass2d fc(f, 1e-9);
@@ -53,16 +53,19 @@ int inside_side(const TopoDS_Face& f, const std::function<bool(const Eigen::Vect
 
 }  // namespace
 
-TopoDS_Shape solid_from_boundary_faces(const std::vector<TopoDS_Face>& split,
-                                       const std::function<bool(const Eigen::Vector3d&)>& member, double size,
-                                       int* kept_out) {
-  TopTools_ListOfShape bounding;
+TopoDS_Shape solid_from_boundary_faces(const std::vector<TopoDS_Face>& split, const PointTestMaker& member,
+                                       double size, int* kept_out) {
   const double delta = 1e-5 * size;
-  for (const auto& f : split) {
-    const int side = inside_side(f, member, delta);
-    if (side == 0) continue;
+  std::vector<int> sides(split.size(), 0);
+  parallel_for(split.size(), [&]() -> std::function<void(std::size_t)> {
+    const PointTest test = member();
+    return [&, test](std::size_t k) { sides[k] = inside_side(split[k], test, delta); };
+  });
+  TopTools_ListOfShape bounding;
+  for (std::size_t k = 0; k < split.size(); ++k) {
+    if (sides[k] == 0) continue;
     // outward: the normal points away from the set
-    bounding.Append(side < 0 ? f : TopoDS::Face(f.Reversed()));
+    bounding.Append(sides[k] < 0 ? split[k] : TopoDS::Face(split[k].Reversed()));
   }
   if (kept_out) *kept_out = bounding.Extent();
   if (bounding.IsEmpty()) return {};

@@ -137,12 +137,20 @@ void quiet_occt();
 /// valid shape within `seconds`; a null shape otherwise (the caller keeps its own).
 TopoDS_Shape unify_faces(const TopoDS_Shape& shape, double seconds);
 
+/// Runs work(i) for every i in [0, n) on the machine's cores (at most eight threads). Each thread
+/// gets its own worker from make(): OCCT's classifiers and intersectors are not shared between
+/// threads. The first exception thrown by a worker is rethrown.
+void parallel_for(std::size_t n, const std::function<std::function<void(std::size_t)>()>& make);
+
+/// A point membership test, and a maker of one per thread.
+using PointTest = std::function<bool(const Eigen::Vector3d&)>;
+using PointTestMaker = std::function<PointTest()>;
+
 /// The solid bounded by the split faces of an arrangement that separate the set (given by point
-/// membership) from its complement, each oriented outward; null when they bound no solid.
-/// `kept`, when given, receives the number of such faces.
-TopoDS_Shape solid_from_boundary_faces(const std::vector<TopoDS_Face>& split,
-                                       const std::function<bool(const Eigen::Vector3d&)>& member, double size,
-                                       int* kept = nullptr);
+/// membership, a test per thread from `member`) from its complement, each oriented outward; null
+/// when they bound no solid. `kept`, when given, receives the number of such faces.
+TopoDS_Shape solid_from_boundary_faces(const std::vector<TopoDS_Face>& split, const PointTestMaker& member,
+                                       double size, int* kept = nullptr);
 
 /// Reads a STEP or BREP file into a shape. @throws InputError at `pointer` when unreadable.
 TopoDS_Shape read_shape_file(const std::string& path, const std::string& pointer);

@@ -137,57 +137,74 @@ class TrajectoryMembership {
   TrajectoryMembership(const TopoDS_Shape& body, bool solid, const ScrewJoint& j, double T, double tol)
       : solid_(solid), j_(j), T_(T), tol_(tol) {
     if (solid_) cls_.Load(body);
-    inter_.Load(body, tol);
-  }
-  bool operator()(const Eigen::Vector3d& x) {
-    // The trajectory meets the body's boundary, or lies wholly inside it (then so does y(0)).
-    Handle(Geom_Curve) c = trajectory(j_, x, T_, tol_);
-    if (!c.IsNull()) {
-      inter_.Init(GeomAdaptor_Curve(c));
-      if (inter_.More()) return true;
+    // One intersector per face, the analytic ones (intersected in closed form) first.
+    std::vector<std::pair<int, TopoDS_Face>> faces;
+    for (TopExp_Explorer ex(body, TopAbs_FACE); ex.More(); ex.Next()) {
+      const TopoDS_Face& f = TopoDS::Face(ex.Current());
+      const GeomAbs_SurfaceType type = BRepAdaptor_Surface(f, false).GetType();
+      const bool analytic = type == GeomAbs_Plane || type == GeomAbs_Cylinder || type == GeomAbs_Cone ||
+                            type == GeomAbs_Sphere;
+      faces.push_back({analytic ? 0 : 1, f});
     }
-    if (!solid_) return false;
-    cls_.Perform(to_pnt(x), tol_);
-    return cls_.State() == TopAbs_IN;
+    std::stable_sort(faces.begin(), faces.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (const auto& f : faces) {
+      inter_.push_back(std::make_unique<BRepIntCurveSurface_Inter>());
+      inter_.back()->Load(f.second, tol);
+    }
+  }
+  /// Whether x is swept: the trajectory meets the body's boundary, or lies wholly inside it (then
+  /// so does y(0)). Either test can come first; the order that has been cheaper so far does (the
+  /// answer does not depend on it).
+  bool operator()(const Eigen::Vector3d& x) {
+    if (!solid_) return meets_boundary(x);
+    const double classify_first = classify_.cost() + (1 - classify_.success()) * intersect_.cost();
+    const double intersect_first = intersect_.cost() + (1 - intersect_.success()) * classify_.cost();
+    if (classify_first < intersect_first) return inside_at_start(x) || meets_boundary(x);
+    return meets_boundary(x) || inside_at_start(x);
   }
 
  private:
+  /// Running cost and success rate of one test.
+  struct Stats {
+    double seconds = 0, runs = 0, successes = 0;
+    double cost() const { return (seconds + 1e-3) / (runs + 1); }
+    double success() const { return (successes + 1) / (runs + 2); }
+    bool record(Clock::time_point t0, bool ok) {
+      seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+      runs += 1;
+      successes += ok;
+      return ok;
+    }
+  };
+
+  bool inside_at_start(const Eigen::Vector3d& x) {
+    const auto t0 = Clock::now();
+    cls_.Perform(to_pnt(x), tol_);
+    return classify_.record(t0, cls_.State() == TopAbs_IN);
+  }
+
+  bool meets_boundary(const Eigen::Vector3d& x) {
+    const auto t0 = Clock::now();
+    Handle(Geom_Curve) c = trajectory(j_, x, T_, tol_);
+    if (c.IsNull()) return intersect_.record(t0, false);
+    const GeomAdaptor_Curve curve(c);
+    for (std::size_t k = 0; k < inter_.size(); ++k) {
+      inter_[k]->Init(curve);
+      if (!inter_[k]->More()) continue;
+      // the face met goes first next time: neighbouring points tend to meet the same face
+      if (k > 0) std::rotate(inter_.begin(), inter_.begin() + k, inter_.begin() + k + 1);
+      return intersect_.record(t0, true);
+    }
+    return intersect_.record(t0, false);
+  }
+
   bool solid_;
   ScrewJoint j_;
   double T_, tol_;
   BRepClass3d_SolidClassifier cls_;
-  BRepIntCurveSurface_Inter inter_;
+  std::vector<std::unique_ptr<BRepIntCurveSurface_Inter>> inter_;
+  Stats classify_, intersect_;
 };
-
-/// Runs work(i) for every i in [0, n) on the machine's cores (at most eight threads). Each thread
-/// gets its own worker from make(): OCCT's classifiers and intersectors are not shared between
-/// threads. The first exception thrown by a worker is rethrown.
-void parallel_for(std::size_t n, const std::function<std::function<void(std::size_t)>()>& make) {
-  const std::size_t nt = std::min<std::size_t>({std::max(1u, std::thread::hardware_concurrency()), 8, n});
-  if (nt <= 1) {
-    const auto work = make();
-    for (std::size_t i = 0; i < n; ++i) work(i);
-    return;
-  }
-  std::atomic<std::size_t> next{0};
-  std::exception_ptr error;
-  std::mutex error_mutex;
-  auto run = [&] {
-    try {
-      const auto work = make();
-      for (std::size_t i = next++; i < n; i = next++) work(i);
-    } catch (...) {
-      std::lock_guard<std::mutex> lock(error_mutex);
-      if (!error) error = std::current_exception();
-      next = n;
-    }
-  };
-  std::vector<std::thread> threads;
-  for (std::size_t t = 1; t < nt; ++t) threads.emplace_back(run);
-  run();
-  for (auto& t : threads) t.join();
-  if (error) std::rethrow_exception(error);
-}
 
 /// Whether OCCT's cell builder reported shells it could not orient.
 bool unable_to_orient(const BOPAlgo_MakerVolume& mv) {
@@ -683,8 +700,8 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
       cand.add(vid, sw);
     }
   }
+  const int lo_id = limit_variety(false), hi_id = full_turn ? -1 : limit_variety(true);
   {
-    const int lo_id = limit_variety(false), hi_id = full_turn ? -1 : limit_variety(true);
     for (const auto& f : pieces) {
       cand.add(lo_id, {f});
       if (!full_turn) cand.add(hi_id, {TopoDS::Face(moved(f, j.transform(T)))});
@@ -696,7 +713,7 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
   // Point membership: the certified analytic test for primitive solids, else the trajectory test
   // (which keeps OCCT state: one per thread, made by member_test).
   const bool solid_entity = dim == 3;
-  auto member_test = [&](double tol_factor) -> std::function<bool(const Eigen::Vector3d&)> {
+  auto member_test = [&](double tol_factor) -> PointTest {
     if (sd) return [&](const Eigen::Vector3d& x) { return in_swept_set(*sd, sd_motion, x, 1e-9 * size); };
     if (pe) return [&](const Eigen::Vector3d& x) { return in_swept_image(*pe, sd_motion, x, 1e-9 * size, size); };
     auto by_trajectory = std::make_shared<std::unique_ptr<TrajectoryMembership>>();
@@ -727,6 +744,35 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
         BRepTopAdaptor_FClass2d fc(f, 1e-9);
         BRepAdaptor_Surface S(f);
         const int n = 7;
+        // A solid at the start of the range is inside the swept set wherever the motion carries
+        // it forward (n . v > 0: the space in front is swept next, the space behind is the solid),
+        // and at the end wherever it came from behind (n . v < 0); over a whole turn both. Its
+        // pieces (split at the grazing curves) with one strict sign need no membership test.
+        const int id = cand.ids[fi];
+        if (solid_entity && (id == lo_id || id == hi_id)) {
+          int sampled = 0;
+          bool all_pos = true, all_neg = true;
+          for (int a = 0; a < n; ++a)
+            for (int b = 0; b < n; ++b) {
+              gp_Pnt2d uv(u0 + (u1 - u0) * (a + 0.5) / n, v0 + (v1 - v0) * (b + 0.5) / n);
+              if (fc.Perform(uv) != TopAbs_IN) continue;
+              BRepLProp_SLProps props(S, uv.X(), uv.Y(), 1, 1e-9);
+              if (!props.IsNormalDefined()) continue;
+              Eigen::Vector3d nn = to_eigen(gp_Vec(props.Normal()));
+              if (f.Orientation() == TopAbs_REVERSED) nn = -nn;
+              // how far the range moves the point along the normal, at least ten times the
+              // offset of the membership tests below (a face the motion barely leaves is tested)
+              const double c = nn.dot(j.velocity(to_eigen(props.Value()))) * T;
+              all_pos = all_pos && c > 10 * delta;
+              all_neg = all_neg && c < -10 * delta;
+              ++sampled;
+            }
+          if (sampled >= 4 && ((full_turn && (all_pos || all_neg)) || (!full_turn && id == lo_id && all_pos) ||
+                               (!full_turn && id == hi_id && all_neg))) {
+            internal_face[fi] = 1;
+            return;
+          }
+        }
         int tested = 0;
         bool internal = true;
         for (int a = 0; a < n && internal; ++a)
@@ -859,7 +905,7 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
     }
     std::vector<TopoDS_Face> split_faces;
     for (int k = 1; k <= split.Extent(); ++k) split_faces.push_back(TopoDS::Face(split(k)));
-    const TopoDS_Shape bounded = solid_from_boundary_faces(split_faces, member, size);
+    const TopoDS_Shape bounded = solid_from_boundary_faces(split_faces, [&] { return member_test(1e-9); }, size);
     if (valid_and_closed(bounded)) {
       int nsolids = 0;
       for (TopExp_Explorer ex(bounded, TopAbs_SOLID); ex.More(); ex.Next()) ++nsolids;
