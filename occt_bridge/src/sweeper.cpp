@@ -253,11 +253,10 @@ double max_tolerance(const TopoDS_Shape& s) {
   return t;
 }
 
-void set_centroid_and_box(Report& rep, const gp_Pnt& c, const TopoDS_Shape& result) {
+void set_centroid_and_box(Report& rep, const gp_Pnt& c, const Bnd_Box& bb) {
   rep.centroid[0] = c.X();
   rep.centroid[1] = c.Y();
   rep.centroid[2] = c.Z();
-  const Bnd_Box bb = shape_box(result);
   bb.Get(rep.bbox_min[0], rep.bbox_min[1], rep.bbox_min[2], rep.bbox_max[0], rep.bbox_max[1], rep.bbox_max[2]);
 }
 
@@ -1127,7 +1126,7 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
       if (dim == 2) BRepGProp::SurfaceProperties(result, g, 1e-10);
       else BRepGProp::LinearProperties(result, g);
       rep.area = dim == 2 ? g.Mass() : 0.0;
-      set_centroid_and_box(rep, g.CentreOfMass(), result);
+      set_centroid_and_box(rep, g.CentreOfMass(), shape_box(result));
       rep.tol_achieved = std::max(fit_err, max_tolerance(result));
       rep.status = rep.valid ? "ok" : "failed";
       rep.message = std::string(rep.valid ? "" : "the result is not valid (BRepCheck); ") + "the swept set is a " +
@@ -1144,10 +1143,12 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
     // divergence volume, computed independently in the faces' parameter domains, which also gives
     // the area at the same quadrature points (on another): both only read the shape.
     GProp_GProps gv;
+    Bnd_Box result_box;
     parallel_for(2, [&]() -> std::function<void(std::size_t)> {
       return [&](std::size_t task) {
         if (task == 1) {
           rep.volume_divergence = divergence_volume(result, &rep.area);
+          result_box = shape_box(result);
           return;
         }
         BRepCheck_Analyzer check(result);
@@ -1168,7 +1169,7 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
     });
     for (TopExp_Explorer ex(result, TopAbs_FACE); ex.More(); ex.Next()) ++rep.faces;
     rep.volume_brep = gv.Mass();
-    set_centroid_and_box(rep, gv.CentreOfMass(), result);
+    set_centroid_and_box(rep, gv.CentreOfMass(), result_box);
     rep.tol_achieved = std::max(fit_err, max_tolerance(result));
     rep.seconds["validation"] = since(t_val);
 
