@@ -131,7 +131,7 @@ Handle(Geom_Curve) trajectory(const ScrewJoint& j, const Eigen::Vector3d& x, dou
 }
 
 /// Membership by the trajectory: x is swept when y(0) is in the body, or y(t) meets its boundary.
-/// The body's classifier and its faces' intersector are set up once for all points.
+/// The body's classifier and an intersector per face are set up once for all points.
 class TrajectoryMembership {
  public:
   TrajectoryMembership(const TopoDS_Shape& body, bool solid, const ScrewJoint& j, double T, double tol)
@@ -742,15 +742,11 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
         BRepTools::UVBounds(f, u0, u1, v0, v1);
         BRepTopAdaptor_FClass2d fc(f, 1e-9);
         BRepAdaptor_Surface S(f);
-        const int n = 7;
-        // A solid at the start of the range is inside the swept set wherever the motion carries
-        // it forward (n . v > 0: the space in front is swept next, the space behind is the solid),
-        // and at the end wherever it came from behind (n . v < 0); over a whole turn both. Its
-        // pieces (split at the grazing curves) with one strict sign need no membership test.
-        const int id = cand.ids[fi];
-        if (solid_entity && (id == lo_id || id == hi_id)) {
-          int sampled = 0;
-          bool all_pos = true, all_neg = true;
+        // visit(point, outward normal) at the points of a 7 x 7 grid inside the face, while it
+        // returns true; the number of points visited
+        auto samples = [&](const std::function<bool(const Eigen::Vector3d&, const Eigen::Vector3d&)>& visit) {
+          const int n = 7;
+          int visited = 0;
           for (int a = 0; a < n; ++a)
             for (int b = 0; b < n; ++b) {
               gp_Pnt2d uv(u0 + (u1 - u0) * (a + 0.5) / n, v0 + (v1 - v0) * (b + 0.5) / n);
@@ -759,32 +755,37 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
               if (!props.IsNormalDefined()) continue;
               Eigen::Vector3d nn = to_eigen(gp_Vec(props.Normal()));
               if (f.Orientation() == TopAbs_REVERSED) nn = -nn;
-              // how far the range moves the point along the normal, at least ten times the
-              // offset of the membership tests below (a face the motion barely leaves is tested)
-              const double c = nn.dot(j.velocity(to_eigen(props.Value()))) * T;
-              all_pos = all_pos && c > 10 * delta;
-              all_neg = all_neg && c < -10 * delta;
-              ++sampled;
+              ++visited;
+              if (!visit(to_eigen(props.Value()), nn)) return visited;
             }
+          return visited;
+        };
+        // A solid at the start of the range is inside the swept set wherever the motion carries
+        // it forward (n . v > 0: the space in front is swept next, the space behind is the solid),
+        // and at the end wherever it came from behind (n . v < 0); over a whole turn both. Its
+        // pieces (split at the grazing curves) with one strict sign need no membership test.
+        const int id = cand.ids[fi];
+        if (solid_entity && (id == lo_id || id == hi_id)) {
+          bool all_pos = true, all_neg = true;
+          const int sampled = samples([&](const Eigen::Vector3d& p, const Eigen::Vector3d& nn) {
+            // how far the range moves the point along the normal, at least ten times the offset
+            // of the membership tests below (a face the motion barely leaves is tested)
+            const double c = nn.dot(j.velocity(p)) * T;
+            all_pos = all_pos && c > 10 * delta;
+            all_neg = all_neg && c < -10 * delta;
+            return true;
+          });
           if (sampled >= 4 && ((full_turn && (all_pos || all_neg)) || (!full_turn && id == lo_id && all_pos) ||
                                (!full_turn && id == hi_id && all_neg))) {
             internal_face[fi] = 1;
             return;
           }
         }
-        int tested = 0;
         bool internal = true;
-        for (int a = 0; a < n && internal; ++a)
-          for (int b = 0; b < n && internal; ++b) {
-            gp_Pnt2d uv(u0 + (u1 - u0) * (a + 0.5) / n, v0 + (v1 - v0) * (b + 0.5) / n);
-            if (fc.Perform(uv) != TopAbs_IN) continue;
-            BRepLProp_SLProps props(S, uv.X(), uv.Y(), 1, 1e-9);
-            if (!props.IsNormalDefined()) continue;
-            Eigen::Vector3d p = to_eigen(props.Value()), nn = to_eigen(gp_Vec(props.Normal()));
-            ++tested;
-            if ((!quick(p + delta * nn) || !quick(p - delta * nn)) && (!traj(p + fine * nn) || !traj(p - fine * nn)))
-              internal = false;
-          }
+        const int tested = samples([&](const Eigen::Vector3d& p, const Eigen::Vector3d& nn) {
+          internal = (quick(p + delta * nn) && quick(p - delta * nn)) || (traj(p + fine * nn) && traj(p - fine * nn));
+          return internal;
+        });
         internal_face[fi] = internal && tested >= 4;
       };
     });
