@@ -74,7 +74,9 @@ TopoDS_Shape solid_from_boundary_faces(const std::vector<TopoDS_Face>& split, co
   bs.SetAvoidInternalShapes(true);
   bs.SetRunParallel(false);
   bs.Perform();
-  if (bs.HasErrors()) return {};
+  // every boundary piece must end up on a shell: a solid built without some of them could look
+  // valid and closed and still miss part of the set
+  if (bs.HasErrors() || bs.HasWarnings()) return {};
   TopoDS_Compound comp;
   BRep_Builder bb;
   bb.MakeCompound(comp);
