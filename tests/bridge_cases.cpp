@@ -201,6 +201,24 @@ TEST_CASE("Paper 4.4: a point swept by three revolute joints, against an indepen
   }
 }
 
+TEST_CASE("Chains: --verify classifies every sample against the solid as well") {
+  // a point swept by two revolutes with parallel axes and extruded: 6 pi; the membership is the
+  // search over the chain's image, and the report gives the symmetric difference it sees
+  sweep::Spec spec = sweep::load_spec(SWEEP_SOURCE_DIR "/examples/chains/point_two_revolutes_extrude.json");
+  sweep::occt::RunOptions opt;
+  opt.verify = true;
+  opt.mc_samples = 160000;  // runs of several joints use an eighth of it: 20000 samples
+  auto r = sweep::occt::run_sweep(spec, opt);
+  CAPTURE(r.report.to_json().dump());
+  REQUIRE(r.report.ok());
+  const auto j = r.report.to_json();
+  REQUIRE(j["volume"].contains("monte_carlo_mismatch"));
+  CHECK(j["volume"]["monte_carlo_samples"].get<std::size_t>() == 20000);
+  CHECK(r.report.mc_mismatches == 0);
+  CHECK(j["volume"]["monte_carlo_mismatch"].get<double>() == 0.0);
+  CHECK(std::abs(r.report.volume_mc - 6 * M_PI) < 4.5 * r.report.volume_mc_stderr);
+}
+
 TEST_CASE("Chains: a sphere moved by four prismatic joints agrees with Monte Carlo membership") {
   // No closed form at hand: the certified membership test (branch and bound over the four joint
   // values with the sphere's signed distance) is the independent reference.

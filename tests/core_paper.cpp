@@ -133,6 +133,21 @@ TEST_CASE("Paper 4.6: the DH table reproduces the printed xi(q*)") {
   CHECK(gap < 1e-11);
 }
 
+TEST_CASE("Monte Carlo: samples where two memberships disagree estimate their symmetric difference") {
+  const Eigen::AlignedBox3d box(Vector3d(-2, -2, -2), Vector3d(2, 2, 2));
+  const auto ball = [](double r) { return [r](const Vector3d& x) { return x.norm() < r; }; };
+  const std::size_t n = 200000;
+  const auto same = sweep::monte_carlo_volume(ball(1.0), box, n, 7, ball(1.0));
+  CHECK(same.mismatches == 0);
+  CHECK(same.mismatch_volume == 0.0);
+  // the shell between radii 1 and 1.1: 4/3 pi (1.331 - 1)
+  const auto shell = sweep::monte_carlo_volume(ball(1.0), box, n, 7, ball(1.1));
+  const double exact = 4.0 / 3.0 * M_PI * (1.331 - 1.0), f = exact / 64.0;
+  CHECK(std::abs(shell.mismatch_volume - exact) < 4.5 * 64.0 * std::sqrt(f * (1 - f) / double(n)));
+  // the volume itself is that of the first membership
+  CHECK(std::abs(shell.volume - 4.0 / 3.0 * M_PI) < 4.5 * shell.stderr_);
+}
+
 TEST_CASE("Monte Carlo membership of swept points and surfaces matches exact volumes") {
   struct Case {
     const char* file;
