@@ -70,7 +70,7 @@ TEST_CASE("Boundary faces: the union of two overlapping boxes keeps only the fac
   CHECK(volume(s) == Approx(8 + 8 - 1).epsilon(1e-12));
 }
 
-TEST_CASE("Boundary faces: a cavity becomes a hole of the solid around it; disjoint parts stay apart") {
+TEST_CASE("Boundary faces: a cavity becomes a hole of the solid around it, disjoint parts stay apart") {
   {
     const auto faces = split_faces({{0, 4}, {1, 2}});
     const Pred member = [](const Eigen::Vector3d& x) { return in_box(x, 0, 4) && !in_box(x, 1, 2); };

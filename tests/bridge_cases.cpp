@@ -248,7 +248,7 @@ double sec4_3_volume(double L, double H) {
 }
 }  // namespace
 
-TEST_CASE("Paper 4.3: a patch slid along itself by its revolve, extruded; limits and a DH offset varied") {
+TEST_CASE("Paper 4.3: a patch slid along itself by its revolve, extruded, with limits and a DH offset varied") {
   const std::string path = SWEEP_SOURCE_DIR "/examples/paper/sec4_3_surface_revolve_two_extrusions.json";
   auto base = sweep::occt::run_sweep(sweep::load_spec(path));
   INFO(base.report.to_json().dump());
