@@ -16,6 +16,14 @@
 
 namespace {
 
+/// An example run with --verify at `mc_samples` samples (runs of several joints use an eighth).
+sweep::occt::RunResult run_verified(const std::string& example, std::size_t mc_samples) {
+  sweep::occt::RunOptions opt;
+  opt.verify = true;
+  opt.mc_samples = mc_samples;
+  return sweep::occt::run_sweep(sweep::load_spec(SWEEP_SOURCE_DIR "/examples/" + example), opt);
+}
+
 void check_case(const std::string& path) {
   CAPTURE(path);
   sweep::Spec spec = sweep::load_spec(path);
@@ -91,11 +99,7 @@ TEST_CASE("Sweep: volume converges as the tolerance tightens (helical sweep)") {
 }
 
 TEST_CASE("Sweep: Monte Carlo membership agrees with the B-rep volume (--verify)") {
-  sweep::Spec spec = sweep::load_spec(SWEEP_SOURCE_DIR "/examples/box_revolve_90.json");
-  sweep::occt::RunOptions opt;
-  opt.verify = true;
-  opt.mc_samples = 100000;
-  auto r = sweep::occt::run_sweep(spec, opt);
+  auto r = run_verified("box_revolve_90.json", 100000);
   REQUIRE(r.report.ok());
   REQUIRE(r.report.has_mc);
   CHECK(r.report.volume_mc_stderr > 0);
@@ -103,11 +107,7 @@ TEST_CASE("Sweep: Monte Carlo membership agrees with the B-rep volume (--verify)
 }
 
 TEST_CASE("Sweep: overlapping screw turns agree with Monte Carlo membership") {
-  sweep::Spec spec = sweep::load_spec(SWEEP_SOURCE_DIR "/examples/sphere_spring_overlap.json");
-  sweep::occt::RunOptions opt;
-  opt.verify = true;
-  opt.mc_samples = 60000;
-  auto r = sweep::occt::run_sweep(spec, opt);
+  auto r = run_verified("sphere_spring_overlap.json", 60000);
   CAPTURE(r.report.to_json().dump());
   REQUIRE(r.report.ok());
   CHECK(std::abs(r.report.volume_mc - r.report.volume_brep) < 4.5 * r.report.volume_mc_stderr);
@@ -204,11 +204,7 @@ TEST_CASE("Paper 4.4: a point swept by three revolute joints, against an indepen
 TEST_CASE("Chains: --verify classifies every sample against the solid as well") {
   // a point swept by two revolutes with parallel axes and extruded: 6 pi; the membership is the
   // search over the chain's image, and the report gives the symmetric difference it sees
-  sweep::Spec spec = sweep::load_spec(SWEEP_SOURCE_DIR "/examples/chains/point_two_revolutes_extrude.json");
-  sweep::occt::RunOptions opt;
-  opt.verify = true;
-  opt.mc_samples = 160000;  // runs of several joints use an eighth of it: 20000 samples
-  auto r = sweep::occt::run_sweep(spec, opt);
+  auto r = run_verified("chains/point_two_revolutes_extrude.json", 160000);  // 20000 samples
   CAPTURE(r.report.to_json().dump());
   REQUIRE(r.report.ok());
   const auto j = r.report.to_json();
@@ -222,11 +218,7 @@ TEST_CASE("Chains: --verify classifies every sample against the solid as well") 
 TEST_CASE("Chains: a sphere moved by four prismatic joints agrees with Monte Carlo membership") {
   // No closed form at hand: the certified membership test (branch and bound over the four joint
   // values with the sphere's signed distance) is the independent reference.
-  sweep::Spec spec = sweep::load_spec(SWEEP_SOURCE_DIR "/examples/chains/sphere_four_prismatic.json");
-  sweep::occt::RunOptions opt;
-  opt.verify = true;
-  opt.mc_samples = 160000;  // runs of several joints use an eighth of it: 20000 samples
-  auto r = sweep::occt::run_sweep(spec, opt);
+  auto r = run_verified("chains/sphere_four_prismatic.json", 160000);  // 20000 samples
   CAPTURE(r.report.to_json().dump());
   REQUIRE(r.report.ok());
   CHECK(r.report.closed);
