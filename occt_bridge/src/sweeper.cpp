@@ -710,11 +710,9 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
   sec["varieties"] += since(t_cand);
 
   // Point membership: the certified analytic test for primitive solids, else the trajectory test
-  // (which keeps OCCT state: one per thread, made by member_test).
+  // (which keeps OCCT state: one per thread, each made by trajectory_test or member_test).
   const bool solid_entity = dim == 3;
-  auto member_test = [&](double tol_factor) -> PointTest {
-    if (sd) return [&](const Eigen::Vector3d& x) { return in_swept_set(*sd, sd_motion, x, 1e-9 * size); };
-    if (pe) return [&](const Eigen::Vector3d& x) { return in_swept_image(*pe, sd_motion, x, 1e-9 * size, size); };
+  auto trajectory_test = [&](double tol_factor) -> PointTest {
     auto by_trajectory = std::make_shared<std::unique_ptr<TrajectoryMembership>>();
     return [&, by_trajectory, tol_factor](const Eigen::Vector3d& x) {
       if (!*by_trajectory)
@@ -722,7 +720,11 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
       return (**by_trajectory)(x);
     };
   };
-  const auto member = member_test(1e-9);
+  auto member_test = [&]() -> PointTest {
+    if (sd) return [&](const Eigen::Vector3d& x) { return in_swept_set(*sd, sd_motion, x, 1e-9 * size); };
+    if (pe) return [&](const Eigen::Vector3d& x) { return in_swept_image(*pe, sd_motion, x, 1e-9 * size, size); };
+    return trajectory_test(1e-9);
+  };
 
   // Drop candidates that lie inside the swept set: sample points of the face's interior with
   // both sides in the set. Keeping a face is always safe; dropping internal ones spares the
@@ -735,7 +737,7 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
     const double delta = 1e-4 * size, fine = std::max(1e-7 * size, 20 * fit_err);
     std::vector<char> internal_face(cand.faces.size(), 0);
     parallel_for(cand.faces.size(), [&]() -> std::function<void(std::size_t)> {
-      const auto quick = member_test(1e-9), traj = member_test(1e-10);
+      const auto quick = member_test(), traj = trajectory_test(1e-10);
       return [&, quick, traj](std::size_t fi) {
         const TopoDS_Face& f = cand.faces[fi];
         double u0, u1, v0, v1;
@@ -895,6 +897,7 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
   // solid is built from the split faces that separate the swept set from its complement, each
   // classified by the membership of points just off both of its sides.
   const auto t_cls = Clock::now();
+  TopoDS_Shape result;
   if (unable_to_orient(mv)) {
     TopTools_IndexedMapOfShape split;
     for (const auto& f : cand.faces) {
@@ -905,56 +908,53 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
     }
     std::vector<TopoDS_Face> split_faces;
     for (int k = 1; k <= split.Extent(); ++k) split_faces.push_back(TopoDS::Face(split(k)));
-    const TopoDS_Shape bounded = solid_from_boundary_faces(split_faces, [&] { return member_test(1e-9); }, size);
+    const TopoDS_Shape bounded = solid_from_boundary_faces(split_faces, member_test, size);
     if (valid_and_closed(bounded)) {
-      int nsolids = 0;
-      for (TopExp_Explorer ex(bounded, TopAbs_SOLID); ex.More(); ex.Next()) ++nsolids;
-      rep.cells += nsolids;
-      sec["classification"] += since(t_cls);
-      const auto t_build = Clock::now();
-      const TopoDS_Shape merged = unify_faces(bounded, std::max(10.0, 2 * since(t_arr)));
-      sec["build"] += since(t_build);
-      if (cand_out) *cand_out = std::move(cand);
-      return merged.IsNull() ? bounded : merged;
+      for (TopExp_Explorer ex(bounded, TopAbs_SOLID); ex.More(); ex.Next()) ++rep.cells;
+      result = bounded;
     }
   }
 
-  // Classify cells.
+  // Otherwise: classify the cells.
   std::vector<TopoDS_Solid> kept;
-  int ncells = 0;
-  for (TopExp_Explorer ex(mv.Shape(), TopAbs_SOLID); ex.More(); ex.Next()) {
-    ++ncells;
-    TopoDS_Solid cell = TopoDS::Solid(ex.Current());
-    Eigen::Vector3d p;
-    if (!interior_point(cell, size, &p)) {
-      GProp_GProps g;
-      BRepGProp::VolumeProperties(cell, g);
-      if (std::abs(g.Mass()) < 1e-9 * size * size * size) continue;  // a sliver of nothing
-      return stage_fail("no interior point found for a cell of volume " + std::to_string(g.Mass()));
+  if (result.IsNull()) {
+    const auto member = member_test();
+    int ncells = 0;
+    for (TopExp_Explorer ex(mv.Shape(), TopAbs_SOLID); ex.More(); ex.Next()) {
+      ++ncells;
+      TopoDS_Solid cell = TopoDS::Solid(ex.Current());
+      Eigen::Vector3d p;
+      if (!interior_point(cell, size, &p)) {
+        GProp_GProps g;
+        BRepGProp::VolumeProperties(cell, g);
+        if (std::abs(g.Mass()) < 1e-9 * size * size * size) continue;  // a sliver of nothing
+        return stage_fail("no interior point found for a cell of volume " + std::to_string(g.Mass()));
+      }
+      if (member(p)) kept.push_back(cell);
     }
-    if (member(p)) kept.push_back(cell);
+    rep.cells += ncells;
+    if (kept.empty()) return stage_fail("no cell of the arrangement is in the swept set");
   }
-  rep.cells += ncells;
   sec["classification"] += since(t_cls);
-  if (kept.empty()) return stage_fail("no cell of the arrangement is in the swept set");
 
   // Union of the kept cells (they share faces exactly), then merge same-domain faces.
   const auto t_build = Clock::now();
-  TopoDS_Shape result;
-  if (kept.size() == 1) {
-    result = kept[0];
-  } else {
-    BRepAlgoAPI_Fuse fuse;
-    TopTools_ListOfShape a, t;
-    a.Append(kept[0]);
-    for (std::size_t k = 1; k < kept.size(); ++k) t.Append(kept[k]);
-    fuse.SetArguments(a);
-    fuse.SetTools(t);
-    fuse.SetRunParallel(false);
-    fuse.SetGlue(BOPAlgo_GlueShift);
-    fuse.Build();
-    if (!fuse.IsDone() || fuse.HasErrors()) return stage_fail("the union of the swept cells failed");
-    result = fuse.Shape();
+  if (result.IsNull()) {
+    if (kept.size() == 1) {
+      result = kept[0];
+    } else {
+      BRepAlgoAPI_Fuse fuse;
+      TopTools_ListOfShape a, t;
+      a.Append(kept[0]);
+      for (std::size_t k = 1; k < kept.size(); ++k) t.Append(kept[k]);
+      fuse.SetArguments(a);
+      fuse.SetTools(t);
+      fuse.SetRunParallel(false);
+      fuse.SetGlue(BOPAlgo_GlueShift);
+      fuse.Build();
+      if (!fuse.IsDone() || fuse.HasErrors()) return stage_fail("the union of the swept cells failed");
+      result = fuse.Shape();
+    }
   }
   // Merging same-domain faces is cosmetic: its result is used only when it is a valid solid and
   // comes within a time limit (generous against the arrangement's own time).
@@ -1246,14 +1246,6 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
       box.extend(box.min() - Eigen::Vector3d::Constant(0.01 * size));
       box.extend(box.max() + Eigen::Vector3d::Constant(0.01 * size));
       MonteCarloResult mc;
-      // Under chains, where the independent membership is a search over the joint and entity
-      // parameters (far slower than classifying a point against the solid), each sample is also
-      // classified against the solid: where the two disagree, one of them is wrong.
-      BRepClass3d_SolidClassifier in_result(result);
-      const auto in_solid = [&](const Eigen::Vector3d& x) {
-        in_result.Perform(to_pnt(x), 1e-9 * size);
-        return in_result.State() == TopAbs_IN;
-      };
       // For the membership searches: a revolute joint beyond a full turn covers nothing new.
       Motion m = motion;
       for (auto& jj : m.joints)
@@ -1271,8 +1263,17 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
             [&](const Eigen::Vector3d& x) { return by_trajectory(x); },
             box, std::min<std::size_t>(opt.mc_samples, 20000), opt.mc_seed);
       } else if (pe) {
+        // Here the independent membership is a search over the joint and entity parameters, far
+        // slower than classifying a point against the solid: each sample is classified against
+        // the solid too, and where the two disagree one of them is wrong.
+        BRepClass3d_SolidClassifier in_result(result);
+        const auto in_solid = [&](const Eigen::Vector3d& x) {
+          in_result.Perform(to_pnt(x), 1e-9 * size);
+          return in_result.State() == TopAbs_IN;
+        };
         mc = monte_carlo_volume([&](const Eigen::Vector3d& x) { return in_swept_image(*pe, m, x, 1e-9 * size, size); },
                                 box, chain_samples, opt.mc_seed, in_solid);
+        rep.mc_compared = true;
       } else {
         throw ComputeError("--verify needs a primitive solid, a point, a curve or a surface entity for motions of "
                            "several joints");
@@ -1281,7 +1282,6 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
       rep.volume_mc = mc.volume;
       rep.volume_mc_stderr = mc.stderr_;
       rep.mc_samples = mc.samples;
-      rep.mc_compared = !sd && n > 1;
       rep.mc_mismatches = mc.mismatches;
       rep.volume_mc_mismatch = mc.mismatch_volume;
       rep.seconds["monte_carlo"] = since(t_mc);
