@@ -69,6 +69,9 @@ struct Report {
   double bbox_min[3] = {0, 0, 0}, bbox_max[3] = {0, 0, 0};
   bool valid = false, closed = false;
   int faces = 0, varieties = 0, dimension = 3, cells = 0;
+  /// stages (1 = innermost) built again from every candidate face after the solid built without
+  /// the faces that sampling found inside the swept set failed its checks
+  std::vector<int> unpruned_stages;
   double tol_requested = 0, tol_achieved = 0;
   double seconds_total = 0;
   nlohmann::json seconds = nlohmann::json::object();
