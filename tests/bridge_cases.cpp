@@ -24,6 +24,51 @@ sweep::occt::RunResult run_verified(const std::string& example, std::size_t mc_s
   return sweep::occt::run_sweep(sweep::load_spec(SWEEP_SOURCE_DIR "/examples/" + example), opt);
 }
 
+/// Monte Carlo membership in the image of the spec's chain (in_swept_image, a branch and bound
+/// over (q, s) that shares nothing with the B-rep) at `samples` points of the solid's box (1 %
+/// larger), each also classified against the solid of `r`: the mismatches bound the volume of
+/// the symmetric difference between the two, not just the difference of volumes.
+sweep::MonteCarloResult against_image(const sweep::Spec& spec, const sweep::occt::RunResult& r, std::size_t samples,
+                                      std::uint64_t seed) {
+  const auto pe = sweep::ParametricEntity::make(spec.entity);
+  REQUIRE(pe);
+  Eigen::AlignedBox3d box(Eigen::Vector3d(r.report.bbox_min[0], r.report.bbox_min[1], r.report.bbox_min[2]),
+                          Eigen::Vector3d(r.report.bbox_max[0], r.report.bbox_max[1], r.report.bbox_max[2]));
+  const double size = box.sizes().maxCoeff();
+  box.extend(box.min() - Eigen::Vector3d::Constant(0.01 * size));
+  box.extend(box.max() + Eigen::Vector3d::Constant(0.01 * size));
+  BRepClass3d_SolidClassifier in_result(r.shape->shape);
+  return sweep::monte_carlo_volume(
+      [&](const Eigen::Vector3d& x) { return sweep::in_swept_image(*pe, spec.motion.motion, x, 1e-9 * size, size); },
+      box, samples, seed,
+      [&](const Eigen::Vector3d& x) {
+        in_result.Perform(gp_Pnt(x.x(), x.y(), x.z()), 1e-9 * size);
+        return in_result.State() == TopAbs_IN;
+      });
+}
+
+/// Runs an example of a chain and checks it: ok, valid, closed, the two integrals agreeing, the
+/// volume within 3 standard errors of the Monte Carlo volume of its note, and 1200 samples of
+/// membership in the chain's image (against_image) that all agree with the solid. A region
+/// missing from the solid or added to it of 1 % of its volume (0.4 % of the box or more) would
+/// show at some sample with probability 1 - (1 - 0.004)^1200 > 99 %.
+sweep::occt::RunResult check_chain_against_image(const std::string& example, double mc_volume, double mc_stderr,
+                                                 std::uint64_t seed) {
+  const sweep::Spec spec = sweep::load_spec(SWEEP_SOURCE_DIR "/examples/" + example);
+  auto r = sweep::occt::run_sweep(spec);
+  CAPTURE(example, r.report.to_json().dump());
+  REQUIRE(r.report.ok());
+  CHECK(r.report.valid);
+  CHECK(r.report.closed);
+  CHECK(std::abs(r.report.volume_brep - mc_volume) < 3 * mc_stderr);
+  CHECK(r.report.volume_divergence == Approx(r.report.volume_brep).epsilon(1e-6));
+  const auto mc = against_image(spec, r, 1200, seed);
+  CAPTURE(mc.volume, mc.stderr_, mc.mismatches);
+  CHECK(mc.mismatches == 0);
+  CHECK(std::abs(mc.volume - r.report.volume_brep) < 4.5 * mc.stderr_);
+  return r;
+}
+
 void check_case(const std::string& path) {
   CAPTURE(path);
   sweep::Spec spec = sweep::load_spec(path);
@@ -287,79 +332,18 @@ TEST_CASE("Paper 4.6: a hemispherical shell extruded and turned about two axes, 
 
 TEST_CASE("Paper 4.1: a circular arc revolved about three axes, point by point against independent membership") {
   // The last stage's arrangement leaves shells OCCT cannot orient; the solid is then built from the
-  // split faces that separate the swept set from its complement. Checked against membership in
-  // the image of the chain (in_swept_image, a branch and bound over (q, t) that shares nothing
-  // with the B-rep): at random points of the solid's box the two must agree, which bounds the
-  // volume of their symmetric difference, not just the difference of volumes. Also against the
-  // Monte Carlo volume of the example's note (40000 samples), 36734.5 +- 265.7.
-  const std::string path = SWEEP_SOURCE_DIR "/examples/paper/sec4_1_curve_three_revolutes.json";
-  const sweep::Spec spec = sweep::load_spec(path);
-  auto r = sweep::occt::run_sweep(spec);
-  CAPTURE(r.report.to_json().dump());
-  REQUIRE(r.report.ok());
-  CHECK(r.report.valid);
-  CHECK(r.report.closed);
-  CHECK(std::abs(r.report.volume_brep - 36734.5) < 3 * 265.7);
-  CHECK(r.report.volume_divergence == Approx(r.report.volume_brep).epsilon(1e-6));
-
-  const auto pe = sweep::ParametricEntity::make(spec.entity);
-  REQUIRE(pe);
-  Eigen::AlignedBox3d box(Eigen::Vector3d(r.report.bbox_min[0], r.report.bbox_min[1], r.report.bbox_min[2]),
-                          Eigen::Vector3d(r.report.bbox_max[0], r.report.bbox_max[1], r.report.bbox_max[2]));
-  const double size = box.sizes().maxCoeff();
-  box.extend(box.min() - Eigen::Vector3d::Constant(0.01 * size));
-  box.extend(box.max() + Eigen::Vector3d::Constant(0.01 * size));
-  BRepClass3d_SolidClassifier in_result(r.shape->shape);
-  const std::size_t n = 1200;
-  const auto mc = sweep::monte_carlo_volume(
-      [&](const Eigen::Vector3d& x) { return sweep::in_swept_image(*pe, spec.motion.motion, x, 1e-9 * size, size); },
-      box, n, 4101,
-      [&](const Eigen::Vector3d& x) {
-        in_result.Perform(gp_Pnt(x.x(), x.y(), x.z()), 1e-9 * size);
-        return in_result.State() == TopAbs_IN;
-      });
-  CAPTURE(mc.volume, mc.stderr_, mc.mismatches);
-  // A region missing from the solid or added to it of 1 % of its volume (about 0.4 % of the box)
-  // would show at some sample with probability 1 - (1 - 0.004)^1200 > 99 %.
-  CHECK(mc.mismatches == 0);
-  CHECK(std::abs(mc.volume - r.report.volume_brep) < 4.5 * mc.stderr_);
+  // split faces that separate the swept set from its complement. Checked against the Monte Carlo
+  // volume of the example's note (40000 samples), 36734.5 +- 265.7.
+  check_chain_against_image("paper/sec4_1_curve_three_revolutes.json", 36734.5, 265.7, 4101);
 }
 
 TEST_CASE("Paper 4.2, joints 2 and 3: a stage whose pruned arrangement fails its checks is built again from every candidate") {
   // Sampling finds 25 of the 72 candidate faces inside the swept set, one of them wrongly (a thin
   // strip of it is on the boundary): OCCT's arrangement of the rest builds a wrong cell, whose
-  // B-rep and divergence volumes disagree. The stage is then built from all 72. Checked point by
-  // point against membership in the chain's image (in_swept_image, which shares nothing with
-  // the B-rep), and against the Monte Carlo volume of the example's note, 27020 +- 335.
-  const std::string path = SWEEP_SOURCE_DIR "/examples/paper/sec4_2_joints_2_3.json";
-  const sweep::Spec spec = sweep::load_spec(path);
-  auto r = sweep::occt::run_sweep(spec);
-  CAPTURE(r.report.to_json().dump());
-  REQUIRE(r.report.ok());
+  // B-rep and divergence volumes disagree. The stage is then built from all 72. Checked against
+  // the Monte Carlo volume of the example's note, 27020 +- 335. The wrong cell differed from the
+  // set by about 2300 (8 % of the volume, 1 % of the box): 1200 samples would show it with
+  // probability above 99.99 %.
+  const auto r = check_chain_against_image("paper/sec4_2_joints_2_3.json", 27020.3, 335.3, 4201);
   CHECK(r.report.unpruned_stages == std::vector<int>{2});
-  CHECK(r.report.valid);
-  CHECK(r.report.closed);
-  CHECK(std::abs(r.report.volume_brep - 27020.3) < 3 * 335.3);
-  CHECK(r.report.volume_divergence == Approx(r.report.volume_brep).epsilon(1e-6));
-
-  const auto pe = sweep::ParametricEntity::make(spec.entity);
-  REQUIRE(pe);
-  Eigen::AlignedBox3d box(Eigen::Vector3d(r.report.bbox_min[0], r.report.bbox_min[1], r.report.bbox_min[2]),
-                          Eigen::Vector3d(r.report.bbox_max[0], r.report.bbox_max[1], r.report.bbox_max[2]));
-  const double size = box.sizes().maxCoeff();
-  box.extend(box.min() - Eigen::Vector3d::Constant(0.01 * size));
-  box.extend(box.max() + Eigen::Vector3d::Constant(0.01 * size));
-  BRepClass3d_SolidClassifier in_result(r.shape->shape);
-  const auto mc = sweep::monte_carlo_volume(
-      [&](const Eigen::Vector3d& x) { return sweep::in_swept_image(*pe, spec.motion.motion, x, 1e-9 * size, size); },
-      box, 1200, 4201,
-      [&](const Eigen::Vector3d& x) {
-        in_result.Perform(gp_Pnt(x.x(), x.y(), x.z()), 1e-9 * size);
-        return in_result.State() == TopAbs_IN;
-      });
-  CAPTURE(mc.volume, mc.stderr_, mc.mismatches);
-  // The wrong cell of the pruned arrangement differed from the set by about 2300 (8 % of the
-  // volume, 1 % of the box): 1200 samples would show it with probability above 99.99 %.
-  CHECK(mc.mismatches == 0);
-  CHECK(std::abs(mc.volume - r.report.volume_brep) < 4.5 * mc.stderr_);
 }
