@@ -41,18 +41,14 @@
 #include <TopoDS.hxx>
 #include <TopoDS_Compound.hxx>
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <exception>
 #include <map>
 #include <memory>
-#include <mutex>
 #include <random>
 #include <sstream>
-#include <thread>
 
 #include "internal.hpp"
 #include "sweep/error.hpp"
@@ -977,16 +973,19 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
 /// (with the validity checks, on one thread) and the divergence volume computed independently in
 /// the faces' parameter domains with the area at the same quadrature points (on another), and the
 /// box. Both tasks only read the shape.
+/// How far two volumes of a solid may differ: a band `tol` wide over its whole boundary (`area`),
+/// plus rounding.
+double volume_band(double tol, double area, double volume) { return tol * area + 1e-9 * std::abs(volume); }
+
 struct SolidChecks {
   bool valid = false, closed = false;
   double volume_brep = 0, volume_divergence = 0, area = 0;
   gp_Pnt centroid;
   Bnd_Box box;
-  /// Valid, closed, with a positive volume on which both integrals agree within a band `tol` wide
-  /// over the whole boundary.
+  /// Valid, closed, with a positive volume on which both integrals agree within volume_band.
   bool agree(double tol) const {
     return valid && closed && volume_brep > 0 &&
-           std::abs(volume_brep - volume_divergence) <= tol * area + 1e-9 * std::abs(volume_brep);
+           std::abs(volume_brep - volume_divergence) <= volume_band(tol, area, volume_brep);
   }
 };
 
@@ -1429,8 +1428,7 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
     }
 
     // Verdict.
-    // (a band as wide as the achieved tolerance over the whole boundary)
-    const double vtol = std::max(rep.tol_achieved, tol) * rep.area + 1e-9 * std::abs(rep.volume_brep);
+    const double vtol = volume_band(std::max(rep.tol_achieved, tol), rep.area, rep.volume_brep);
     if (why.empty() && rep.has_mc && std::abs(rep.volume_brep - rep.volume_mc) > 4.5 * rep.volume_mc_stderr + vtol)
       why = "B-rep and Monte Carlo volumes disagree (" + std::to_string(rep.volume_brep) + " vs " +
             std::to_string(rep.volume_mc) + " +- " + std::to_string(rep.volume_mc_stderr) + ")";
