@@ -6,11 +6,14 @@
 #include <TopoDS_Edge.hxx>
 #include <TopoDS_Face.hxx>
 #include <TopoDS_Shape.hxx>
+#include <gp_Circ.hxx>
 #include <gp_Pln.hxx>
 #include <gp_Pnt.hxx>
+#include <gp_Torus.hxx>
 #include <gp_Trsf.hxx>
 #include <gp_Vec.hxx>
 #include <functional>
+#include <memory>
 #include <vector>
 
 #include "occt_bridge/sweeper.hpp"
@@ -151,6 +154,30 @@ using PointTestMaker = std::function<PointTest()>;
 /// when they bound no solid. `kept`, when given, receives the number of such faces.
 TopoDS_Shape solid_from_boundary_faces(const std::vector<TopoDS_Face>& split, const PointTestMaker& member,
                                        double size, int* kept = nullptr);
+
+/// Point membership in the sweep of `body` (placed at the start of the range) by joint j over
+/// [0, T]: x is swept when its path back through the motion, y(t) = exp(-xi t) x, meets the body's
+/// boundary, or (for a solid body) starts inside it. Keeps OCCT state: one per thread.
+class TrajectoryMembership {
+ public:
+  TrajectoryMembership(const TopoDS_Shape& body, bool solid, const ScrewJoint& j, double T, double tol);
+  ~TrajectoryMembership();
+  TrajectoryMembership(const TrajectoryMembership&) = delete;
+  TrajectoryMembership& operator=(const TrajectoryMembership&) = delete;
+  bool operator()(const Eigen::Vector3d& x);
+  /// Whether x is inside the solid body by rays from it: 1 inside, 0 outside, -1 when no ray
+  /// gives a clear answer (x on the boundary; a ray tangent to a face).
+  int ray_inside(const Eigen::Vector3d& x);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// The angles w in [0, 2 pi), ascending, at which the circle c (ElCLib's parametrisation) meets
+/// the whole torus: the roots of a quartic. *solved is false, and nothing is returned, when the
+/// quartic's leading coefficient vanishes (as for a circle about the torus's own axis).
+std::vector<double> circle_torus_angles(const gp_Circ& c, const gp_Torus& tor, bool* solved);
 
 /// Reads a STEP or BREP file into a shape. @throws InputError at `pointer` when unreadable.
 TopoDS_Shape read_shape_file(const std::string& path, const std::string& pointer);

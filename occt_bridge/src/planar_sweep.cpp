@@ -119,7 +119,7 @@ std::vector<TopoDS_Face> planar_curve_sweep(const Handle(Geom_Curve)& c, double 
   args.Append(big);
   sp.SetArguments(args);
   sp.SetTools(tools);
-  sp.SetRunParallel(false);
+  sp.SetRunParallel(true);
   sp.SetFuzzyValue(1e-9 * size);
   sp.Build();
   if (!sp.IsDone() || sp.HasErrors()) throw ComputeError("could not split the plane of a planar sweep");

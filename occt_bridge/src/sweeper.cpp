@@ -16,7 +16,6 @@
 #include <BRepClass3d_SolidClassifier.hxx>
 #include <BRepGProp.hxx>
 #include <BRepGProp_Face.hxx>
-#include <BRepIntCurveSurface_Inter.hxx>
 #include <BRepLProp_SLProps.hxx>
 #include <BRepTools.hxx>
 #include <BRepTopAdaptor_FClass2d.hxx>
@@ -26,11 +25,8 @@
 #include <GProp_GProps.hxx>
 #include <GeomAPI_PointsToBSpline.hxx>
 #include <GeomAPI_ProjectPointOnSurf.hxx>
-#include <GeomAdaptor_Curve.hxx>
 #include <Geom_BSplineCurve.hxx>
-#include <Geom_Circle.hxx>
 #include <Geom_Line.hxx>
-#include <Geom_TrimmedCurve.hxx>
 #include <ShapeAnalysis_Shell.hxx>
 #include <Standard_Failure.hxx>
 #include <TColgp_Array1OfPnt.hxx>
@@ -104,104 +100,6 @@ double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::
 TopoDS_Shape moved(const TopoDS_Shape& s, const Eigen::Isometry3d& T) {
   return BRepBuilderAPI_Transform(s, to_trsf(T), true).Shape();
 }
-
-/// The path of the body-frame point y(t) = exp(-xi t) x for t in [0, T] as a curve.
-Handle(Geom_Curve) trajectory(const ScrewJoint& j, const Eigen::Vector3d& x, double T, double tol) {
-  if (j.type == JointType::Prismatic) {
-    Handle(Geom_Line) l = new Geom_Line(to_pnt(x), gp_Dir(to_vec(-j.direction)));
-    return new Geom_TrimmedCurve(l, 0.0, T);
-  }
-  Eigen::Vector3d foot = j.point + j.direction * j.direction.dot(x - j.point);
-  double r = (x - foot).norm();
-  if (std::abs(j.pitch) == 0) {
-    if (r < 1e-12) return nullptr;
-    gp_Ax2 ax(to_pnt(foot), gp_Dir(to_vec(-j.direction)), gp_Dir(to_vec((x - foot) / r)));
-    Handle(Geom_Circle) c = new Geom_Circle(ax, r);
-    return new Geom_TrimmedCurve(c, 0.0, T);
-  }
-  const int n = std::max(16, int(std::ceil(T / (M_PI / 32))));
-  TColgp_Array1OfPnt pts(1, n + 1);
-  for (int k = 0; k <= n; ++k) pts.SetValue(k + 1, to_pnt(j.transform(-T * k / n) * x));
-  GeomAPI_PointsToBSpline fit(pts, 3, 8, GeomAbs_C2, tol);
-  Handle(Geom_Curve) c(fit.Curve().get());
-  return c;
-}
-
-/// Membership by the trajectory: x is swept when y(0) is in the body, or y(t) meets its boundary.
-/// The body's classifier and an intersector per face are set up once for all points.
-class TrajectoryMembership {
- public:
-  TrajectoryMembership(const TopoDS_Shape& body, bool solid, const ScrewJoint& j, double T, double tol)
-      : solid_(solid), j_(j), T_(T), tol_(tol) {
-    if (solid_) cls_.Load(body);
-    // One intersector per face, the analytic ones (intersected in closed form) first.
-    std::vector<std::pair<int, TopoDS_Face>> faces;
-    for (TopExp_Explorer ex(body, TopAbs_FACE); ex.More(); ex.Next()) {
-      const TopoDS_Face& f = TopoDS::Face(ex.Current());
-      const GeomAbs_SurfaceType type = BRepAdaptor_Surface(f, false).GetType();
-      const bool analytic = type == GeomAbs_Plane || type == GeomAbs_Cylinder || type == GeomAbs_Cone ||
-                            type == GeomAbs_Sphere;
-      faces.push_back({analytic ? 0 : 1, f});
-    }
-    std::stable_sort(faces.begin(), faces.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-    for (const auto& f : faces) {
-      inter_.push_back(std::make_unique<BRepIntCurveSurface_Inter>());
-      inter_.back()->Load(f.second, tol);
-    }
-  }
-  /// Whether x is swept: the trajectory meets the body's boundary, or lies wholly inside it (then
-  /// so does y(0)). Either test can come first; the order that has been cheaper so far does (the
-  /// answer does not depend on it).
-  bool operator()(const Eigen::Vector3d& x) {
-    if (!solid_) return meets_boundary(x);
-    const double classify_first = classify_.cost() + (1 - classify_.success()) * intersect_.cost();
-    const double intersect_first = intersect_.cost() + (1 - intersect_.success()) * classify_.cost();
-    if (classify_first < intersect_first) return inside_at_start(x) || meets_boundary(x);
-    return meets_boundary(x) || inside_at_start(x);
-  }
-
- private:
-  /// Running cost and success rate of one test.
-  struct Stats {
-    double seconds = 0, runs = 0, successes = 0;
-    double cost() const { return (seconds + 1e-3) / (runs + 1); }
-    double success() const { return (successes + 1) / (runs + 2); }
-    bool record(Clock::time_point t0, bool ok) {
-      seconds += std::chrono::duration<double>(Clock::now() - t0).count();
-      runs += 1;
-      successes += ok;
-      return ok;
-    }
-  };
-
-  bool inside_at_start(const Eigen::Vector3d& x) {
-    const auto t0 = Clock::now();
-    cls_.Perform(to_pnt(x), tol_);
-    return classify_.record(t0, cls_.State() == TopAbs_IN);
-  }
-
-  bool meets_boundary(const Eigen::Vector3d& x) {
-    const auto t0 = Clock::now();
-    Handle(Geom_Curve) c = trajectory(j_, x, T_, tol_);
-    if (c.IsNull()) return intersect_.record(t0, false);
-    const GeomAdaptor_Curve curve(c);
-    for (std::size_t k = 0; k < inter_.size(); ++k) {
-      inter_[k]->Init(curve);
-      if (!inter_[k]->More()) continue;
-      // the face met goes first next time: neighbouring points tend to meet the same face
-      if (k > 0) std::rotate(inter_.begin(), inter_.begin() + k, inter_.begin() + k + 1);
-      return intersect_.record(t0, true);
-    }
-    return intersect_.record(t0, false);
-  }
-
-  bool solid_;
-  ScrewJoint j_;
-  double T_, tol_;
-  BRepClass3d_SolidClassifier cls_;
-  std::vector<std::unique_ptr<BRepIntCurveSurface_Inter>> inter_;
-  Stats classify_, intersect_;
-};
 
 /// Whether OCCT's cell builder reported shells it could not orient.
 bool unable_to_orient(const BOPAlgo_MakerVolume& mv) {
@@ -668,7 +566,7 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
       args.Append(face);
       splitter.SetArguments(args);
       splitter.SetTools(tools);
-      splitter.SetRunParallel(false);
+      splitter.SetRunParallel(true);
       splitter.SetFuzzyValue(1e-9 * esize);
       splitter.Build();
       if (splitter.IsDone() && !splitter.HasErrors()) {
@@ -877,7 +775,7 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
   for (double factor : {1.0, 0.1, 10.0}) {
     mv.Clear();
     mv.SetArguments(args);
-    mv.SetRunParallel(false);
+    mv.SetRunParallel(true);
     mv.SetFuzzyValue(fuzzy * factor);
     mv.SetNonDestructive(true);
     mv.Perform();
@@ -953,7 +851,7 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
       for (std::size_t k = 1; k < kept.size(); ++k) t.Append(kept[k]);
       fuse.SetArguments(a);
       fuse.SetTools(t);
-      fuse.SetRunParallel(false);
+      fuse.SetRunParallel(true);
       fuse.SetGlue(BOPAlgo_GlueShift);
       fuse.Build();
       if (!fuse.IsDone() || fuse.HasErrors()) return stage_fail("the union of the swept cells failed");
@@ -1183,7 +1081,7 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
         if (faces.Extent() > 1) {
           BRepAlgoAPI_BuilderAlgo gf;
           gf.SetArguments(faces);
-          gf.SetRunParallel(false);
+          gf.SetRunParallel(true);
           gf.SetFuzzyValue(1e-9 * size);
           gf.SetNonDestructive(true);
           gf.Build();

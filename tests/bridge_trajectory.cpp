@@ -1,0 +1,135 @@
+// Membership by trajectories: circles met by tori in closed form, rays deciding inside, and the
+// whole test against a membership computed from a torus's exact distance.
+#include <BRepClass3d_SolidClassifier.hxx>
+#include <BRepPrimAPI_MakeBox.hxx>
+#include <BRepPrimAPI_MakeTorus.hxx>
+#include <BRepAlgoAPI_Fuse.hxx>
+#include <ElCLib.hxx>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <random>
+
+#include "internal.hpp"
+
+namespace {
+
+/// Signed distance from p to the torus (negative inside): exact away from its axis.
+double torus_distance(const gp_Torus& t, const gp_Pnt& p) {
+  const gp_Ax3& ax = t.Position();
+  const gp_Vec d(ax.Location(), p);
+  const double h = d.Dot(gp_Vec(ax.Direction()));
+  const double rho = std::sqrt(std::max(0.0, d.SquareMagnitude() - h * h));
+  return std::hypot(rho - t.MajorRadius(), h) - t.MinorRadius();
+}
+
+gp_Dir random_dir(std::mt19937_64& rng) {
+  std::normal_distribution<double> n;
+  return gp_Dir(n(rng), n(rng), n(rng));
+}
+
+}  // namespace
+
+TEST_CASE("Circle and torus: the quartic's angles lie on the torus and account for every crossing") {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int cases = 0, with_roots = 0;
+  for (int it = 0; it < 400; ++it) {
+    const gp_Torus tor(gp_Ax3(gp_Pnt(u(rng), u(rng), u(rng)), random_dir(rng)), 3.0 + u(rng), 1.0 + 0.5 * u(rng));
+    const gp_Dir n = random_dir(rng);
+    const gp_Circ c(gp_Ax2(gp_Pnt(3 * u(rng), 3 * u(rng), 3 * u(rng)), n), 1.0 + 3.0 * (u(rng) + 1.0));
+    bool solved = false;
+    const std::vector<double> w = sweep::occt::circle_torus_angles(c, tor, &solved);
+    REQUIRE(solved);
+    // each angle is a point of the torus
+    for (double a : w) CHECK(std::abs(torus_distance(tor, ElCLib::Value(a, c))) < 1e-9);
+    // the sign changes of the distance along the circle, where no sample comes near a tangency
+    const int m = 4000;
+    std::vector<double> d(m + 2);
+    for (int k = 0; k < m + 2; ++k) d[k] = torus_distance(tor, ElCLib::Value(2 * M_PI * k / m, c));
+    int changes = 0;
+    bool near_tangent = false;
+    for (int k = 0; k < m; ++k) {
+      changes += (d[k] < 0) != (d[k + 1] < 0);
+      // a local extremum close to the torus: a touch the sampling could miss or split
+      const bool extremum = (d[k + 1] - d[k]) * (d[k + 2] - d[k + 1]) <= 0;
+      near_tangent = near_tangent || (extremum && std::abs(d[k + 1]) < 0.05);
+    }
+    if (near_tangent) continue;
+    ++cases;
+    with_roots += !w.empty();
+    CHECK(int(w.size()) == changes);
+  }
+  CHECK(cases > 300);
+  CHECK(with_roots > 100);
+
+  // a circle about the torus's own axis: the quartic degenerates and the caller is told so
+  const gp_Torus tor(gp_Ax3(gp::Origin(), gp::DZ()), 3.0, 1.0);
+  bool solved = true;
+  CHECK(sweep::occt::circle_torus_angles(gp_Circ(gp_Ax2(gp_Pnt(0, 0, 0.5), gp::DZ()), 3.2), tor, &solved).empty());
+  CHECK_FALSE(solved);
+}
+
+TEST_CASE("Trajectory membership: rays agree with OCCT's classifier, and the swept set with the exact distance") {
+  // a torus fused with a box through it: torus, plane and box faces
+  const gp_Ax2 frame(gp_Pnt(1.0, 0.5, 0.2), gp_Dir(0.3, -0.2, 1.0));
+  const gp_Torus tor(gp_Ax3(frame), 3.0, 1.0);
+  BRepAlgoAPI_Fuse fuse(BRepPrimAPI_MakeTorus(frame, 3.0, 1.0).Shape(),
+                        BRepPrimAPI_MakeBox(gp_Pnt(2.0, -1.0, -1.0), 3.0, 2.0, 2.0).Shape());
+  REQUIRE(fuse.IsDone());
+  const TopoDS_Shape body = fuse.Shape();
+  auto in_body = [&](const gp_Pnt& p) {
+    return torus_distance(tor, p) < 0 || (p.X() > 2 && p.X() < 5 && std::abs(p.Y()) < 1 && std::abs(p.Z()) < 1);
+  };
+  // margin from the body's boundary: at most the distance to the torus's and the box's surfaces
+  auto margin = [&](const gp_Pnt& p) {
+    const Eigen::Vector3d q = Eigen::Vector3d(std::abs(p.X() - 3.5), std::abs(p.Y()), std::abs(p.Z())) -
+                              Eigen::Vector3d(1.5, 1.0, 1.0);
+    const double db = q.maxCoeff() > 0 ? q.cwiseMax(0.0).norm() : -q.maxCoeff();
+    return std::min(std::abs(torus_distance(tor, p)), db);
+  };
+
+  sweep::ScrewJoint j;
+  j.type = sweep::JointType::Revolute;
+  j.point = Eigen::Vector3d(-1.0, 0.0, 0.0);
+  j.direction = Eigen::Vector3d(0.2, 1.0, 0.1).normalized();
+  const double T = 2.0;
+  j.lo = 0.0;
+  j.hi = T;
+  sweep::occt::TrajectoryMembership member(body, true, j, T, 1e-9 * 10);
+
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-6.0, 6.0);
+  BRepClass3d_SolidClassifier cls(body);
+  int decided = 0, compared = 0, inside = 0;
+  for (int it = 0; it < 300; ++it) {
+    const Eigen::Vector3d x(u(rng), u(rng), u(rng));
+    const gp_Pnt p(x.x(), x.y(), x.z());
+    // rays against OCCT's classifier and the exact set
+    const int by_ray = member.ray_inside(x);
+    if (by_ray >= 0) {
+      ++decided;
+      cls.Perform(p, 1e-9);
+      CHECK(by_ray == int(cls.State() == TopAbs_IN));
+      if (margin(p) > 1e-6) CHECK(by_ray == int(in_body(p)));
+    }
+    // the swept set: the path back through the motion, sampled densely; the point is decided
+    // when the path comes well inside, or stays farther out than the sampling can hide
+    const int m = 4000;
+    double closest = 1e300;
+    bool in = false;
+    for (int k = 0; k <= m; ++k) {
+      const Eigen::Vector3d y = j.transform(-T * k / m) * x;
+      const gp_Pnt q(y.x(), y.y(), y.z());
+      in = in || (in_body(q) && margin(q) > 1e-3);
+      closest = std::min(closest, margin(q));
+    }
+    const double r = (x - j.point - j.direction * j.direction.dot(x - j.point)).norm();
+    if (!in && closest < r * T / m + 1e-3) continue;
+    ++compared;
+    inside += in;
+    CHECK(member(x) == in);
+  }
+  CHECK(decided > 290);
+  CHECK(compared > 250);
+  CHECK(inside > 30);
+}
