@@ -78,23 +78,16 @@ std::pair<double, double> face_integrals(const TopoDS_Face& face) {
 
 }  // namespace
 
+std::pair<double, double> face_divergence_and_area(const TopoDS_Face& f) {
+  const auto [i, a] = face_integrals(f);
+  return {(f.Orientation() == TopAbs_REVERSED ? -i : i) / 3.0, a};
+}
+
 double face_divergence(const TopoDS_Face& f) {
   const double i = face_integrals(f).first;
   return (f.Orientation() == TopAbs_REVERSED ? -i : i) / 3.0;
 }
 
 double face_area(const TopoDS_Face& f) { return face_integrals(f).second; }
-
-double divergence_volume(const TopoDS_Shape& solid, double* area) {
-  double v = 0, a = 0;
-  for (TopExp_Explorer ex(solid, TopAbs_FACE); ex.More(); ex.Next()) {
-    const TopoDS_Face& f = TopoDS::Face(ex.Current());
-    const auto [i, fa] = face_integrals(f);
-    v += f.Orientation() == TopAbs_REVERSED ? -i : i;
-    a += fa;
-  }
-  if (area) *area = a;
-  return v / 3.0;
-}
 
 }  // namespace sweep::occt

@@ -71,12 +71,12 @@ std::vector<TopoDS_Face> sweep_curve(const Handle(Geom_Curve)& c, double first, 
 /// does, or when the curve lies in a plane perpendicular to the axis).
 std::vector<double> axial_breaks(const Handle(Geom_Curve)& c, double first, double last, const ScrewJoint& joint);
 
-/// Divergence-theorem volume (1/3) sum over faces of the integral of x . n, computed by Green's
-/// theorem in each face's parameter domain along its pcurves; `area`, when given, receives the
-/// total area, integrated the same way at the same points.
-double divergence_volume(const TopoDS_Shape& solid, double* area = nullptr);
-/// The same integral over one face, signed by its orientation.
+/// A face's share of the divergence-theorem volume, (1/3) the integral of x . n over the face,
+/// signed by its orientation: computed by Green's theorem in the face's parameter domain along its
+/// pcurves. A solid's volume is the sum over its faces.
 double face_divergence(const TopoDS_Face& face);
+/// face_divergence and the face's area, integrated the same way at the same points.
+std::pair<double, double> face_divergence_and_area(const TopoDS_Face& face);
 /// The area of one face by the same quadrature.
 double face_area(const TopoDS_Face& face);
 

@@ -15,7 +15,9 @@
 #include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
 #include <BRepClass3d_SolidClassifier.hxx>
 #include <BRepGProp.hxx>
+#include <BRepGProp_Domain.hxx>
 #include <BRepGProp_Face.hxx>
+#include <BRepGProp_Vinert.hxx>
 #include <BRepLProp_SLProps.hxx>
 #include <BRepTools.hxx>
 #include <BRepTopAdaptor_FClass2d.hxx>
@@ -887,33 +889,94 @@ struct SolidChecks {
   }
 };
 
+/// OCCT's volume integral of oriented faces, each about P (BRepGProp's adaptive Gauss integration,
+/// face by face as BRepGProp::VolumeProperties does): the volume and the first moment about the
+/// origin add to those of the other faces taken about the same P.
+void occt_volume_of_faces(const std::vector<TopoDS_Face>& faces, const gp_Pnt& P, double eps, double* volume,
+                          gp_XYZ* moment) {
+  BRepGProp_Face BF;
+  BRepGProp_Domain BD;
+  BRepGProp_Vinert G;
+  G.SetLocation(P);
+  for (const TopoDS_Face& f : faces) {
+    if (f.Orientation() != TopAbs_FORWARD && f.Orientation() != TopAbs_REVERSED) continue;
+    TopLoc_Location loc;
+    if (BRep_Tool::Surface(f, loc).IsNull()) continue;
+    BF.Load(f);
+    if (f.NbChildren() == 0) {
+      G.Perform(BF, eps);
+    } else {
+      BD.Init(f);
+      G.Perform(BF, BD, eps);
+    }
+    *volume += G.Mass();
+    *moment += G.CentreOfMass().XYZ() * G.Mass();
+  }
+}
+
 SolidChecks check_solid(const TopoDS_Shape& result) {
   SolidChecks c;
-  GProp_GProps gv;
-  parallel_for(2, [&]() -> std::function<void(std::size_t)> {
+  // OCCT's volume integral is a sum over the faces: they are shared out between two parts of
+  // about equal cost (large B-spline faces dominate), integrated on two threads about one point.
+  std::vector<std::pair<double, TopoDS_Face>> faces;
+  for (TopExp_Explorer ex(result, TopAbs_FACE); ex.More(); ex.Next()) {
+    const TopoDS_Face& f = TopoDS::Face(ex.Current());
+    const BRepAdaptor_Surface S(f, false);
+    double cost = 1;
+    if (S.GetType() == GeomAbs_BSplineSurface)
+      cost = double(S.NbUKnots() * S.NbVKnots()) * (S.UDegree() + 1) * (S.VDegree() + 1);
+    faces.push_back({cost, f});
+  }
+  std::stable_sort(faces.begin(), faces.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  std::vector<TopoDS_Face> part[2];
+  double load[2] = {0, 0};
+  for (const auto& [cost, f] : faces) {
+    const int k = load[0] <= load[1] ? 0 : 1;
+    part[k].push_back(f);
+    load[k] += cost;
+  }
+  gp_XYZ P(0, 0, 0);  // the mean of the vertices, near the solid
+  int nv = 0;
+  for (TopExp_Explorer ex(result, TopAbs_VERTEX); ex.More(); ex.Next(), ++nv)
+    P += BRep_Tool::Pnt(TopoDS::Vertex(ex.Current())).XYZ();
+  if (nv > 0) P /= nv;
+  double volume[2] = {0, 0};
+  gp_XYZ moment[2] = {gp_XYZ(0, 0, 0), gp_XYZ(0, 0, 0)};
+  // Tasks, the costliest first: OCCT's integral of the two parts, the divergence integral face by
+  // face, the box, validity and closedness.
+  const std::size_t nf = faces.size();
+  std::vector<std::pair<double, double>> div_area(nf);
+  parallel_for(nf + 4, [&]() -> std::function<void(std::size_t)> {
     return [&](std::size_t task) {
-      if (task == 1) {
-        c.volume_divergence = divergence_volume(result, &c.area);
+      if (task < 2) {
+        occt_volume_of_faces(part[task], gp_Pnt(P), 1e-10, &volume[task], &moment[task]);
+      } else if (task < nf + 2) {
+        div_area[task - 2] = face_divergence_and_area(faces[task - 2].second);
+      } else if (task == nf + 2) {
         c.box = shape_box(result);
-        return;
+      } else {
+        c.valid = BRepCheck_Analyzer(result).IsValid();
+        // Closed: every shell of every solid has each edge used twice, with opposite
+        // orientations. Checked solid by solid, so solids that touch along an edge do not count
+        // as open.
+        int nsolids = 0;
+        c.closed = true;
+        for (TopExp_Explorer ex(result, TopAbs_SOLID); ex.More(); ex.Next()) {
+          ++nsolids;
+          ShapeAnalysis_Shell sas;
+          sas.LoadShells(ex.Current());
+          if (sas.CheckOrientedShells(ex.Current(), true) || sas.HasFreeEdges()) c.closed = false;
+        }
+        c.closed = c.closed && nsolids > 0;
       }
-      c.valid = BRepCheck_Analyzer(result).IsValid();
-      // Closed: every shell of every solid has each edge used twice, with opposite orientations.
-      // Checked solid by solid, so solids that touch along an edge do not count as open.
-      int nsolids = 0;
-      c.closed = true;
-      for (TopExp_Explorer ex(result, TopAbs_SOLID); ex.More(); ex.Next()) {
-        ++nsolids;
-        ShapeAnalysis_Shell sas;
-        sas.LoadShells(ex.Current());
-        if (sas.CheckOrientedShells(ex.Current(), true) || sas.HasFreeEdges()) c.closed = false;
-      }
-      c.closed = c.closed && nsolids > 0;
-      BRepGProp::VolumeProperties(result, gv, 1e-10);
     };
   });
-  c.volume_brep = gv.Mass();
-  c.centroid = gv.CentreOfMass();
+  for (const auto& [v, a] : div_area) {
+    c.volume_divergence += v;
+    c.area += a;
+  }
+  c.volume_brep = volume[0] + volume[1];
+  c.centroid = gp_Pnt((moment[0] + moment[1]) / c.volume_brep);
   return c;
 }
 
