@@ -10,7 +10,10 @@
 #include <BRep_Builder.hxx>
 #include <GProp_GProps.hxx>
 #include <ShapeAnalysis_Shell.hxx>
+#include <BRep_Tool.hxx>
+#include <TopExp.hxx>
 #include <TopExp_Explorer.hxx>
+#include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
 #include <TopoDS.hxx>
 #include <TopoDS_Compound.hxx>
 #include <TopoDS_Iterator.hxx>
@@ -54,7 +57,7 @@ int inside_side(const TopoDS_Face& f, const PointTest& member, double delta) {
 }  // namespace
 
 TopoDS_Shape solid_from_boundary_faces(const std::vector<TopoDS_Face>& split, const PointTestMaker& member,
-                                       double size, int* kept_out) {
+                                       double size, int* kept_out, std::vector<TopoDS_Edge>* free_edges) {
   const double delta = 1e-5 * size;
   std::vector<int> sides(split.size(), 0);
   parallel_for(split.size(), [&]() -> std::function<void(std::size_t)> {
@@ -69,6 +72,24 @@ TopoDS_Shape solid_from_boundary_faces(const std::vector<TopoDS_Face>& split, co
   }
   if (kept_out) *kept_out = bounding.Extent();
   if (bounding.IsEmpty()) return {};
+  if (free_edges) {
+    // edges on one boundary piece only (seams and degenerate edges aside): where the pieces do
+    // not close up
+    free_edges->clear();
+    TopoDS_Compound all;
+    BRep_Builder b;
+    b.MakeCompound(all);
+    for (TopTools_ListIteratorOfListOfShape it(bounding); it.More(); it.Next()) b.Add(all, it.Value());
+    TopTools_IndexedDataMapOfShapeListOfShape faces_of;
+    TopExp::MapShapesAndUniqueAncestors(all, TopAbs_EDGE, TopAbs_FACE, faces_of);
+    for (int k = 1; k <= faces_of.Extent(); ++k) {
+      const TopoDS_Edge& e = TopoDS::Edge(faces_of.FindKey(k));
+      const TopTools_ListOfShape& fs = faces_of(k);
+      if (fs.Extent() != 1 || BRep_Tool::Degenerated(e) || BRep_Tool::IsClosed(e, TopoDS::Face(fs.First())))
+        continue;
+      free_edges->push_back(e);
+    }
+  }
   BOPAlgo_BuilderSolid bs;
   bs.SetShapes(bounding);
   bs.SetAvoidInternalShapes(true);

@@ -151,9 +151,11 @@ using PointTestMaker = std::function<PointTest()>;
 
 /// The solid bounded by the split faces of an arrangement that separate the set (given by point
 /// membership, a test per thread from `member`) from its complement, each oriented outward; null
-/// when they bound no solid. `kept`, when given, receives the number of such faces.
+/// when they bound no solid. `kept`, when given, receives the number of such faces, and
+/// `free_edges` the edges that only one of them uses (seams aside): where they fail to close up.
 TopoDS_Shape solid_from_boundary_faces(const std::vector<TopoDS_Face>& split, const PointTestMaker& member,
-                                       double size, int* kept = nullptr);
+                                       double size, int* kept = nullptr,
+                                       std::vector<TopoDS_Edge>* free_edges = nullptr);
 
 /// Point membership in the sweep of `body` (placed at the start of the range) by joint j over
 /// [0, T]: x is swept when its path back through the motion, y(t) = exp(-xi t) x, meets the body's

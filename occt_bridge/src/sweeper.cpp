@@ -30,6 +30,7 @@
 #include <Geom_BSplineCurve.hxx>
 #include <Geom_Line.hxx>
 #include <ShapeAnalysis_Shell.hxx>
+#include <ShapeFix_Shape.hxx>
 #include <Standard_Failure.hxx>
 #include <TColgp_Array1OfPnt.hxx>
 #include <TopExp.hxx>
@@ -76,6 +77,10 @@ nlohmann::json Report::to_json() const {
   j["varieties"] = varieties;
   j["cells"] = cells;
   j["unpruned_stages"] = unpruned_stages;
+  j["healed_stages"] = healed_stages;
+  j["restored_candidates"] = nlohmann::json::array();
+  for (const auto& [stage, faces] : restored_candidates)
+    j["restored_candidates"].push_back({{"stage", stage}, {"faces", faces}});
   j["dimension"] = dimension;
   j["tolerance"] = {{"requested", tol_requested}, {"achieved", tol_achieved}};
   nlohmann::json s = seconds;
@@ -632,6 +637,8 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
   // where the envelope touches it tangentially): the caller checks the stage's solid and builds it
   // again without pruning when a check fails.
   if (dropped) *dropped = 0;
+  std::vector<TopoDS_Face> dropped_faces;
+  std::vector<int> dropped_ids;
   if (prune) {
     const auto t_prune = Clock::now();
     // A quick test with a comfortable offset; a sample that fails it (near the boundary, or at a
@@ -696,11 +703,15 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
     });
     std::vector<TopoDS_Face> keep;
     std::vector<int> keep_ids;
-    for (std::size_t fi = 0; fi < cand.faces.size(); ++fi)
+    for (std::size_t fi = 0; fi < cand.faces.size(); ++fi) {
       if (!internal_face[fi]) {
         keep.push_back(cand.faces[fi]);
         keep_ids.push_back(cand.ids[fi]);
+      } else {
+        dropped_faces.push_back(cand.faces[fi]);
+        dropped_ids.push_back(cand.ids[fi]);
       }
+    }
     sec["pruning"] += since(t_prune);
     if (dropped) *dropped = int(cand.faces.size() - keep.size());
     cand.faces.swap(keep);
@@ -765,59 +776,122 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
     cand.ids.swap(uniq_ids);
   }
 
-  // Arrangement of all candidate faces.
-  const auto t_arr = Clock::now();
-  TopTools_ListOfShape args;
-  for (const auto& f : cand.faces) args.Append(f);
+  // Dropped candidates that contain a point of one of the edges (within 1e-5 of the model size),
+  // moved back among the candidates; how many.
+  auto restore_near = [&](const std::vector<TopoDS_Edge>& edges) {
+    std::vector<gp_Pnt> pts;
+    for (const auto& e : edges) {
+      const BRepAdaptor_Curve c(e);
+      for (int k = 0; k < 5; ++k) pts.push_back(c.Value(c.FirstParameter() + (c.LastParameter() - c.FirstParameter()) * (k + 0.5) / 5));
+    }
+    const double d = 1e-5 * size;
+    std::vector<char> near(dropped_faces.size(), 0);
+    parallel_for(dropped_faces.size(), [&]() -> std::function<void(std::size_t)> {
+      return [&](std::size_t i) {
+        const TopoDS_Face& f = dropped_faces[i];
+        Bnd_Box box;
+        BRepBndLib::Add(f, box);
+        box.Enlarge(d);
+        double u0, u1, v0, v1;
+        BRepTools::UVBounds(f, u0, u1, v0, v1);
+        GeomAPI_ProjectPointOnSurf proj;
+        proj.Init(BRep_Tool::Surface(f), u0, u1, v0, v1);
+        BRepTopAdaptor_FClass2d fc(f, 1e-9);
+        for (const gp_Pnt& p : pts) {
+          if (box.IsOut(p)) continue;
+          proj.Perform(p);
+          if (proj.NbPoints() == 0 || proj.LowerDistance() > d) continue;
+          double u, v;
+          proj.LowerDistanceParameters(u, v);
+          if (fc.Perform(gp_Pnt2d(u, v)) != TopAbs_OUT) {
+            near[i] = 1;
+            return;
+          }
+        }
+      };
+    });
+    int n = 0;
+    std::vector<TopoDS_Face> still;
+    std::vector<int> still_ids;
+    for (std::size_t i = 0; i < dropped_faces.size(); ++i) {
+      if (near[i]) {
+        cand.faces.push_back(dropped_faces[i]);
+        cand.ids.push_back(dropped_ids[i]);
+        ++n;
+      } else {
+        still.push_back(dropped_faces[i]);
+        still_ids.push_back(dropped_ids[i]);
+      }
+    }
+    dropped_faces.swap(still);
+    dropped_ids.swap(still_ids);
+    return n;
+  };
+
+  // Arrangement of the candidate faces. OCCT's cell builder can leave shells it cannot orient and
+  // lose the cells they bound, or build no cell at all: then the solid is built from the split
+  // faces that separate the swept set from its complement, each classified by the membership of
+  // points just off both of its sides. When those leave free edges where candidates that pruning
+  // dropped lie (a thin strip of boundary on a face that is internal almost everywhere), such
+  // candidates are restored and the arrangement is made again, at most three times.
   // OCCT's arrangement can build no cell at one fuzzy value and every cell at a neighbouring one
   // (a ball extruded along (1, 0, 1): none at 1e-6, all at 1e-7 and 1e-5): other values are tried
   // when it builds none.
   const double fuzzy = std::max(1e-7 * size, 10 * fit_err);
   BOPAlgo_MakerVolume mv;
-  for (double factor : {1.0, 0.1, 10.0}) {
-    mv.Clear();
-    mv.SetArguments(args);
-    mv.SetRunParallel(true);
-    mv.SetFuzzyValue(fuzzy * factor);
-    mv.SetNonDestructive(true);
-    mv.Perform();
-    if (!mv.HasErrors() && TopExp_Explorer(mv.Shape(), TopAbs_SOLID).More()) break;
-  }
-  if (const char* dump = std::getenv("SWEEP_DUMP_CANDIDATES")) {  // diagnostics: the arrangement's input
-    TopoDS_Compound comp;
-    BRep_Builder bb;
-    bb.MakeCompound(comp);
-    for (const auto& f : cand.faces) bb.Add(comp, f);
-    BRepTools::Write(comp, dump);
-  }
-  if (mv.HasErrors()) {
-    std::ostringstream why;
-    mv.DumpErrors(why);
-    return stage_fail("the arrangement of the candidate faces failed: " + why.str());
-  }
-  sec["arrangement"] += since(t_arr);
-
-  // OCCT's cell builder can leave shells it cannot orient and lose the cells they bound: then the
-  // solid is built from the split faces that separate the swept set from its complement, each
-  // classified by the membership of points just off both of its sides.
-  const auto t_cls = Clock::now();
   TopoDS_Shape result;
-  if (unable_to_orient(mv)) {
-    TopTools_IndexedMapOfShape split;
-    for (const auto& f : cand.faces) {
-      if (mv.Images().IsBound(f))
-        for (TopTools_ListIteratorOfListOfShape it(mv.Images().Find(f)); it.More(); it.Next()) split.Add(it.Value());
-      else
-        split.Add(f);
+  const auto t_arrangements = Clock::now();
+  for (int round = 0;; ++round) {
+    const auto t_arr = Clock::now();
+    TopTools_ListOfShape args;
+    for (const auto& f : cand.faces) args.Append(f);
+    for (double factor : {1.0, 0.1, 10.0}) {
+      mv.Clear();
+      mv.SetArguments(args);
+      mv.SetRunParallel(true);
+      mv.SetFuzzyValue(fuzzy * factor);
+      mv.SetNonDestructive(true);
+      mv.Perform();
+      if (!mv.HasErrors() && TopExp_Explorer(mv.Shape(), TopAbs_SOLID).More()) break;
     }
-    std::vector<TopoDS_Face> split_faces;
-    for (int k = 1; k <= split.Extent(); ++k) split_faces.push_back(TopoDS::Face(split(k)));
-    const TopoDS_Shape bounded = solid_from_boundary_faces(split_faces, member_test, size);
-    if (valid_and_closed(bounded)) {
-      for (TopExp_Explorer ex(bounded, TopAbs_SOLID); ex.More(); ex.Next()) ++rep.cells;
-      result = bounded;
+    if (const char* dump = std::getenv("SWEEP_DUMP_CANDIDATES")) {  // diagnostics: the arrangement's input
+      TopoDS_Compound comp;
+      BRep_Builder bb;
+      bb.MakeCompound(comp);
+      for (const auto& f : cand.faces) bb.Add(comp, f);
+      BRepTools::Write(comp, dump);
     }
+    if (mv.HasErrors()) {
+      std::ostringstream why;
+      mv.DumpErrors(why);
+      return stage_fail("the arrangement of the candidate faces failed: " + why.str());
+    }
+    sec["arrangement"] += since(t_arr);
+
+    const auto t_bnd = Clock::now();
+    std::vector<TopoDS_Edge> free_edges;
+    if (unable_to_orient(mv) || !TopExp_Explorer(mv.Shape(), TopAbs_SOLID).More()) {
+      TopTools_IndexedMapOfShape split;
+      for (const auto& f : cand.faces) {
+        if (mv.Images().IsBound(f))
+          for (TopTools_ListIteratorOfListOfShape it(mv.Images().Find(f)); it.More(); it.Next()) split.Add(it.Value());
+        else
+          split.Add(f);
+      }
+      std::vector<TopoDS_Face> split_faces;
+      for (int k = 1; k <= split.Extent(); ++k) split_faces.push_back(TopoDS::Face(split(k)));
+      const TopoDS_Shape bounded = solid_from_boundary_faces(split_faces, member_test, size, nullptr, &free_edges);
+      if (valid_and_closed(bounded)) {
+        for (TopExp_Explorer ex(bounded, TopAbs_SOLID); ex.More(); ex.Next()) ++rep.cells;
+        result = bounded;
+      }
+    }
+    const int restored = result.IsNull() && round < 3 && !free_edges.empty() ? restore_near(free_edges) : 0;
+    sec["classification"] += since(t_bnd);
+    if (restored == 0) break;
+    rep.restored_candidates.push_back({stage, restored});
   }
+  const auto t_cls = Clock::now();
 
   // Otherwise: classify the cells.
   std::vector<TopoDS_Solid> kept;
@@ -862,21 +936,32 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
   }
   // Merging same-domain faces is cosmetic: its result is used only when it is a valid solid and
   // comes within a time limit (generous against the arrangement's own time).
-  const TopoDS_Shape merged = unify_faces(result, std::max(10.0, 2 * since(t_arr)));
+  const TopoDS_Shape merged = unify_faces(result, std::max(10.0, 2 * since(t_arrangements)));
   if (!merged.IsNull()) result = merged;
   sec["build"] += since(t_build);
   if (cand_out) *cand_out = std::move(cand);
   return result;
 }
 
-/// What the validation measures on a solid: OCCT's validity, closedness, OCCT's adaptive volume
-/// (with the validity checks, on one thread) and the divergence volume computed independently in
-/// the faces' parameter domains with the area at the same quadrature points (on another), and the
-/// box. Both tasks only read the shape.
+/// OCCT's shape healing of a solid that fails OCCT's validity check (as a self-intersecting wire
+/// of one face left by the union of a stage's cells); null when the healed shape is not valid
+/// either. The caller checks the healed solid like any other.
+TopoDS_Shape healed(const TopoDS_Shape& s) {
+  ShapeFix_Shape fix(s);
+  fix.Perform();
+  const TopoDS_Shape h = fix.Shape();
+  if (h.IsNull() || !BRepCheck_Analyzer(h).IsValid()) return {};
+  return h;
+}
+
 /// How far two volumes of a solid may differ: a band `tol` wide over its whole boundary (`area`),
 /// plus rounding.
 double volume_band(double tol, double area, double volume) { return tol * area + 1e-9 * std::abs(volume); }
 
+/// What the validation measures on a solid: OCCT's validity, closedness, OCCT's adaptive volume
+/// and the divergence volume computed independently in the faces' parameter domains with the area
+/// at the same quadrature points, and the box (check_solid: tasks on the machine's cores that only
+/// read the shape).
 struct SolidChecks {
   bool valid = false, closed = false;
   double volume_brep = 0, volume_divergence = 0, area = 0;
@@ -1095,6 +1180,8 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
                             cells_before](bool prune, int* dropped, Candidates* out) {
           rep.varieties = varieties_before;
           rep.cells = cells_before;
+          auto& rc = rep.restored_candidates;
+          rc.erase(std::remove_if(rc.begin(), rc.end(), [&](const auto& r) { return r.first == n - i; }), rc.end());
           *out = Candidates();
           return solid_sweep(body, dim, j, T, use_sd ? sd.get() : nullptr, spe, sd_motion, esize, size, tol, fit_tol,
                              fit_err, rep, n - i, i + 1, out, prune, dropped);
@@ -1106,7 +1193,16 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
           // A stage whose arrangement lacked faces left out as internal is checked here (the last
           // one with the result): built again from every candidate when the check fails.
           const auto t_chk = Clock::now();
-          const bool agree = check_solid(shape).agree(std::max({fit_err, max_tolerance(shape), tol}));
+          const SolidChecks sc = check_solid(shape);
+          bool agree = sc.agree(std::max({fit_err, max_tolerance(shape), tol}));
+          if (!agree && !sc.valid) {
+            const TopoDS_Shape h = healed(shape);
+            if (!h.IsNull() && check_solid(h).agree(std::max({fit_err, max_tolerance(h), tol}))) {
+              shape = h;
+              agree = true;
+              rep.healed_stages.push_back(n - i);
+            }
+          }
           rep.seconds["stage_checks"] = rep.seconds.value("stage_checks", 0.0) + since(t_chk);
           if (!agree) {
             if (opt.progress) opt.progress("stage " + std::to_string(n - i) + " failed its checks: again with every candidate");
@@ -1179,6 +1275,7 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
     }
 
     // The checks on the final solid, validation then containment: the reason it fails, if any.
+    const std::string invalid = "the solid is not valid (BRepCheck)";
     auto check_result = [&](const TopoDS_Shape& solid) -> std::string {
       const auto t_val = Clock::now();
       const SolidChecks checks = check_solid(solid);
@@ -1256,7 +1353,7 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
       }
       rep.seconds["containment"] = rep.seconds.value("containment", 0.0) + since(t_cont);
 
-      if (!rep.valid) return "the solid is not valid (BRepCheck)";
+      if (!rep.valid) return invalid;
       if (!rep.closed) return "the solid is not closed";
       if (rep.volume_brep <= 0) return "the solid has no volume";
       if (!missing.empty()) return missing + ": part of the swept set is missing";
@@ -1266,6 +1363,17 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
       return "";
     };
     std::string why = check_result(result);
+    if (why == invalid) {
+      const TopoDS_Shape h = healed(result);
+      if (!h.IsNull()) {
+        const std::string why_healed = check_result(h);
+        if (why_healed.empty()) {
+          result = h;
+          rep.healed_stages.push_back(n);
+        }
+        why = why_healed;
+      }
+    }
     if (!why.empty() && redo_last) {
       // Pruning may have left out a face that carries a strip of the boundary: the last stage
       // is built again from every candidate.

@@ -72,6 +72,12 @@ struct Report {
   /// stages (1 = innermost) built again from every candidate face after the solid built without
   /// the faces that sampling found inside the swept set failed its checks
   std::vector<int> unpruned_stages;
+  /// stages whose solid failed OCCT's validity check and passed every check after OCCT's shape
+  /// healing (ShapeFix_Shape)
+  std::vector<int> healed_stages;
+  /// (stage, faces): candidate faces that pruning had dropped, restored because the boundary
+  /// pieces of the arrangement without them left free edges on them
+  std::vector<std::pair<int, int>> restored_candidates;
   double tol_requested = 0, tol_achieved = 0;
   double seconds_total = 0;
   nlohmann::json seconds = nlohmann::json::object();
