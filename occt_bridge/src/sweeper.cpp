@@ -630,6 +630,64 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
     return trajectory_test(1e-9);
   };
 
+  // Drop duplicate candidates (the same face reached twice, e.g. by symmetric edges): the
+  // general fuse handles coincident analytic faces, but not coincident general ones. Done before
+  // pruning, so that a candidate restored after it cannot duplicate one kept.
+  {
+    std::vector<TopoDS_Face> uniq;
+    std::vector<std::pair<double, Bnd_Box>> props;
+    auto lies_on = [&](const TopoDS_Face& a, const TopoDS_Face& b) {
+      double u0, u1, v0, v1;
+      BRepTools::UVBounds(a, u0, u1, v0, v1);
+      BRepAdaptor_Surface SA(a);
+      BRepTopAdaptor_FClass2d fa(a, 1e-9);
+      Handle(Geom_Surface) gb = BRep_Tool::Surface(b);
+      BRepTopAdaptor_FClass2d fb(b, 1e-9);
+      int n = 0;
+      for (int i = 0; i < 5; ++i)
+        for (int k = 0; k < 5; ++k) {
+          gp_Pnt2d uv(u0 + (u1 - u0) * (i + 0.5) / 5, v0 + (v1 - v0) * (k + 0.5) / 5);
+          if (fa.Perform(uv) != TopAbs_IN) continue;
+          gp_Pnt p = SA.Value(uv.X(), uv.Y());
+          GeomAPI_ProjectPointOnSurf proj(p, gb);
+          if (proj.NbPoints() == 0 || proj.LowerDistance() > 1e-7 * size) return false;
+          double pu, pv;
+          proj.LowerDistanceParameters(pu, pv);
+          if (fb.Perform(gp_Pnt2d(pu, pv)) == TopAbs_OUT) return false;
+          ++n;
+        }
+      return n >= 3;
+    };
+    std::vector<int> uniq_ids;
+    for (std::size_t fi = 0; fi < cand.faces.size(); ++fi) {
+      const TopoDS_Face& f = cand.faces[fi];
+      GProp_GProps g;
+      BRepGProp::SurfaceProperties(f, g);
+      Bnd_Box b;
+      BRepBndLib::Add(f, b);
+      bool dup = false;
+      for (std::size_t k = 0; k < uniq.size() && !dup; ++k) {
+        if (std::abs(props[k].first - g.Mass()) > 1e-6 * std::max(g.Mass(), 1e-300)) continue;
+        {
+          double a[6], c[6];
+          props[k].second.Get(a[0], a[1], a[2], a[3], a[4], a[5]);
+          b.Get(c[0], c[1], c[2], c[3], c[4], c[5]);
+          bool same_box = true;
+          for (int m = 0; m < 6; ++m) same_box = same_box && std::abs(a[m] - c[m]) <= 1e-6 * size;
+          if (!same_box) continue;
+        }
+        dup = lies_on(f, uniq[k]) && lies_on(uniq[k], f);
+      }
+      if (!dup) {
+        uniq.push_back(f);
+        uniq_ids.push_back(cand.ids[fi]);
+        props.push_back({g.Mass(), b});
+      }
+    }
+    cand.faces.swap(uniq);
+    cand.ids.swap(uniq_ids);
+  }
+
   // Drop candidates that lie inside the swept set: sample points of the face's interior with
   // both sides in the set. Keeping a face is always safe; dropping internal ones spares the
   // arrangement needless (often tangential) intersections. Faces are tested in parallel.
@@ -718,63 +776,6 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
     cand.ids.swap(keep_ids);
   }
 
-
-  // Drop duplicate candidates (the same face reached twice, e.g. by symmetric edges): the
-  // general fuse handles coincident analytic faces, but not coincident general ones.
-  {
-    std::vector<TopoDS_Face> uniq;
-    std::vector<std::pair<double, Bnd_Box>> props;
-    auto lies_on = [&](const TopoDS_Face& a, const TopoDS_Face& b) {
-      double u0, u1, v0, v1;
-      BRepTools::UVBounds(a, u0, u1, v0, v1);
-      BRepAdaptor_Surface SA(a);
-      BRepTopAdaptor_FClass2d fa(a, 1e-9);
-      Handle(Geom_Surface) gb = BRep_Tool::Surface(b);
-      BRepTopAdaptor_FClass2d fb(b, 1e-9);
-      int n = 0;
-      for (int i = 0; i < 5; ++i)
-        for (int k = 0; k < 5; ++k) {
-          gp_Pnt2d uv(u0 + (u1 - u0) * (i + 0.5) / 5, v0 + (v1 - v0) * (k + 0.5) / 5);
-          if (fa.Perform(uv) != TopAbs_IN) continue;
-          gp_Pnt p = SA.Value(uv.X(), uv.Y());
-          GeomAPI_ProjectPointOnSurf proj(p, gb);
-          if (proj.NbPoints() == 0 || proj.LowerDistance() > 1e-7 * size) return false;
-          double pu, pv;
-          proj.LowerDistanceParameters(pu, pv);
-          if (fb.Perform(gp_Pnt2d(pu, pv)) == TopAbs_OUT) return false;
-          ++n;
-        }
-      return n >= 3;
-    };
-    std::vector<int> uniq_ids;
-    for (std::size_t fi = 0; fi < cand.faces.size(); ++fi) {
-      const TopoDS_Face& f = cand.faces[fi];
-      GProp_GProps g;
-      BRepGProp::SurfaceProperties(f, g);
-      Bnd_Box b;
-      BRepBndLib::Add(f, b);
-      bool dup = false;
-      for (std::size_t k = 0; k < uniq.size() && !dup; ++k) {
-        if (std::abs(props[k].first - g.Mass()) > 1e-6 * std::max(g.Mass(), 1e-300)) continue;
-        {
-          double a[6], c[6];
-          props[k].second.Get(a[0], a[1], a[2], a[3], a[4], a[5]);
-          b.Get(c[0], c[1], c[2], c[3], c[4], c[5]);
-          bool same_box = true;
-          for (int m = 0; m < 6; ++m) same_box = same_box && std::abs(a[m] - c[m]) <= 1e-6 * size;
-          if (!same_box) continue;
-        }
-        dup = lies_on(f, uniq[k]) && lies_on(uniq[k], f);
-      }
-      if (!dup) {
-        uniq.push_back(f);
-        uniq_ids.push_back(cand.ids[fi]);
-        props.push_back({g.Mass(), b});
-      }
-    }
-    cand.faces.swap(uniq);
-    cand.ids.swap(uniq_ids);
-  }
 
   // Dropped candidates that contain a point of one of the edges (within 1e-5 of the model size),
   // moved back among the candidates; how many.

@@ -207,8 +207,8 @@ struct TrajectoryMembership::Impl {
         if (!clear) break;
       }
       if (!clear) continue;
-      const bool by_count = crossings % 2 == 1;
       if (crossings == 0) return 0;
+      const bool by_count = crossings % 2 == 1;
       if (by_count == first_leaves) return by_count ? 1 : 0;
     }
     return -1;
@@ -280,8 +280,6 @@ struct TrajectoryMembership::Impl {
   std::vector<FaceHit> inter_;
   Stats classify_, intersect_;
 };
-
-
 
 TrajectoryMembership::TrajectoryMembership(const TopoDS_Shape& body, bool solid, const ScrewJoint& j, double T,
                                            double tol)
