@@ -356,7 +356,8 @@ TEST_CASE("Paper 4.2: a curve swept by three skew revolute joints, point by poin
   // ShapeFix and checked like any solid. Its edge tolerances are wide (about 0.1), so the two
   // integrals are asked to agree to 1e-4 rather than 1e-6. Checked against the Monte Carlo volume
   // of the example's note, 207660 +- 1963.
-  const auto r = check_chain_against_image("paper/sec4_2_curve_three_skew_revolutes.json", 207660.0, 1963.0, 4202, 1e-4);
+  const auto r =
+      check_chain_against_image("paper/sec4_2_curve_three_skew_revolutes.json", 207660.0, 1963.0, 4202, 1e-4);
   CHECK(r.report.unpruned_stages == std::vector<int>{2});
   CHECK(r.report.healed_stages == std::vector<int>{3});
   REQUIRE(r.report.restored_candidates.size() == 1);

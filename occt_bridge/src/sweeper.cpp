@@ -776,14 +776,14 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
     cand.ids.swap(keep_ids);
   }
 
-
   // Dropped candidates that contain a point of one of the edges (within 1e-5 of the model size),
   // moved back among the candidates; how many.
   auto restore_near = [&](const std::vector<TopoDS_Edge>& edges) {
     std::vector<gp_Pnt> pts;
     for (const auto& e : edges) {
       const BRepAdaptor_Curve c(e);
-      for (int k = 0; k < 5; ++k) pts.push_back(c.Value(c.FirstParameter() + (c.LastParameter() - c.FirstParameter()) * (k + 0.5) / 5));
+      const double a = c.FirstParameter(), b = c.LastParameter();
+      for (int k = 0; k < 5; ++k) pts.push_back(c.Value(a + (b - a) * (k + 0.5) / 5));
     }
     const double d = 1e-5 * size;
     std::vector<char> near(dropped_faces.size(), 0);
