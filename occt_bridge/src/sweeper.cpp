@@ -1062,7 +1062,8 @@ SolidChecks check_solid(const TopoDS_Shape& result) {
     c.area += a;
   }
   c.volume_brep = volume[0] + volume[1];
-  c.centroid = gp_Pnt((moment[0] + moment[1]) / c.volume_brep);
+  // (no volume, no centroid: the point integrated about stands in, a finite number for the report)
+  c.centroid = c.volume_brep != 0 ? gp_Pnt((moment[0] + moment[1]) / c.volume_brep) : gp_Pnt(P);
   return c;
 }
 
@@ -1367,12 +1368,15 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
     if (why == invalid) {
       const TopoDS_Shape h = healed(result);
       if (!h.IsNull()) {
+        // the report now describes the healed solid, and so does the reason when it still fails
         const std::string why_healed = check_result(h);
         if (why_healed.empty()) {
           result = h;
           rep.healed_stages.push_back(n);
+          why.clear();
+        } else {
+          why = why_healed + " (after OCCT's shape healing of a solid that was not valid)";
         }
-        why = why_healed;
       }
     }
     if (!why.empty() && redo_last) {
