@@ -95,3 +95,40 @@ TEST_CASE("Boundary faces: a cavity becomes a hole of the solid around it, disjo
     CHECK(sweep::occt::solid_from_boundary_faces(faces, each(nothing), 1).IsNull());
   }
 }
+
+TEST_CASE("Sewing: a solid is oriented by the outward hint when one is given, by classification otherwise") {
+  const TopoDS_Shape box = BRepPrimAPI_MakeBox(gp_Pnt(0, 0, 0), gp_Pnt(1, 2, 3)).Shape();
+  std::vector<TopoDS_Face> faces;
+  for (TopExp_Explorer ex(box, TopAbs_FACE); ex.More(); ex.Next()) faces.push_back(TopoDS::Face(ex.Current()));
+  REQUIRE(faces.size() == 6);
+  // the first face of OCCT's box is the plane x = 0 (parameters y and z at its origin), whose
+  // outward direction is -x
+  sweep::occt::OutwardHint hint;
+  hint.face = 0;
+  hint.u = 0.5;
+  hint.v = 0.5;
+  SECTION("no hint") {
+    const TopoDS_Shape s = sweep::occt::sew_solid(faces, 1e-7);
+    REQUIRE_FALSE(s.IsNull());
+    CHECK(volume(s) == Approx(6).epsilon(1e-12));
+  }
+  SECTION("an outward hint") {
+    hint.out = gp_Vec(-1, 0.2, 0);
+    const TopoDS_Shape s = sweep::occt::sew_solid(faces, 1e-7, &hint);
+    REQUIRE_FALSE(s.IsNull());
+    CHECK(BRepCheck_Analyzer(s).IsValid());
+    CHECK(volume(s) == Approx(6).epsilon(1e-12));
+  }
+  SECTION("a hint pointing inwards is followed: the solid comes out inside out") {
+    hint.out = gp_Vec(1, 0, 0);
+    const TopoDS_Shape s = sweep::occt::sew_solid(faces, 1e-7, &hint);
+    REQUIRE_FALSE(s.IsNull());
+    CHECK(volume(s) == Approx(-6).epsilon(1e-12));
+  }
+  SECTION("a hint tangent to the face is not used") {
+    hint.out = gp_Vec(0, 1, 0);
+    const TopoDS_Shape s = sweep::occt::sew_solid(faces, 1e-7, &hint);
+    REQUIRE_FALSE(s.IsNull());
+    CHECK(volume(s) == Approx(6).epsilon(1e-12));
+  }
+}

@@ -312,7 +312,7 @@ bool build_tube(const Eigen::Vector3d& c, double r, const ScrewJoint& j, double 
 
 }  // namespace
 
-TopoDS_Shape sew_solid(const std::vector<TopoDS_Face>& fs, double tol) {
+TopoDS_Shape sew_solid(const std::vector<TopoDS_Face>& fs, double tol, const OutwardHint* hint) {
   BRepBuilderAPI_Sewing sew(tol);
   for (const auto& f : fs) sew.Add(f);
   sew.Perform();
@@ -325,7 +325,31 @@ TopoDS_Shape sew_solid(const std::vector<TopoDS_Face>& fs, double tol) {
   BRepBuilderAPI_MakeSolid ms(shell);
   if (!ms.IsDone()) return {};
   TopoDS_Solid solid = ms.Solid();
-  BRepLib::OrientClosedSolid(solid);
+  // the hinted face as sewn, with its orientation in the solid: its normal against `out`
+  double side = 0;
+  if (hint && hint->face < fs.size()) {
+    const TopoDS_Shape sewn_face = sew.Modified(fs[hint->face]);
+    for (TopExp_Explorer ex(solid, TopAbs_FACE); ex.More() && !sewn_face.IsNull(); ex.Next()) {
+      if (!ex.Current().IsSame(sewn_face)) continue;
+      const TopoDS_Face& f = TopoDS::Face(ex.Current());
+      TopLoc_Location loc;
+      const Handle(Geom_Surface) S = BRep_Tool::Surface(f, loc);
+      if (S.IsNull()) break;
+      gp_Pnt p;
+      gp_Vec su, sv;
+      S->D1(hint->u, hint->v, p, su, sv);
+      gp_Vec n = su.Crossed(sv).Transformed(loc.Transformation());
+      if (f.Orientation() == TopAbs_REVERSED) n.Reverse();
+      const double m = n.Magnitude() * hint->out.Magnitude();
+      if (m > 0) side = n.Dot(hint->out) / m;
+      break;
+    }
+  }
+  if (std::abs(side) > 0.1) {
+    if (side < 0) solid.Reverse();
+  } else {
+    BRepLib::OrientClosedSolid(solid);
+  }
   return solid;
 }
 
@@ -539,7 +563,6 @@ TopoDS_Shape ball_screw_sweep_overlap(const Eigen::Vector3d& c, double r, const 
   // meet; v = v1 + (v2 - v1)(1 - cos phi) / 2 makes the curve smooth in phi there.
   const double speed = std::sqrt(R * R + b * b) + 2 * r;
   const double ptol = 0.5 * fit_tol / speed;
-  double e2d = 0;
   // (at an arc's end, `end`, the two crossing times are the time of least distance)
   auto tongue_time = [&](double v, bool up, bool end = false) {
     const Eigen::Vector3d x = start_row(v);
@@ -548,18 +571,25 @@ TopoDS_Shape ball_screw_sweep_overlap(const Eigen::Vector3d& c, double r, const 
     if (end || d2 >= r * r) return up ? T - sm : -sm;
     return up ? T - H.crossing(x, r, sm, up_lo) : -H.crossing(x, r, sm, dn_hi);
   };
-  auto tube_tongue = [&](double vs, double ve, bool up) {
+  auto tube_tongue = [&](double vs, double ve, bool up, double* e2d) {
     return fit_pcurve(
         [&](double ph) {
           const double v = vs + (ve - vs) * 0.5 * (1 - std::cos(ph));
           return Eigen::RowVector3d(tongue_time(v, up, ph == 0 || ph == M_PI), v, 0.0);
         },
-        ptol, &e2d);
+        ptol, e2d);
   };
-  Handle(Geom2d_BSplineCurve) tongue_up = tube_tongue(a2, a1, true);
-  if (tongue_up.IsNull()) return {};
-  Handle(Geom2d_BSplineCurve) tongue_dn = tube_tongue(b1, b2, false);
-  if (tongue_dn.IsNull()) return {};
+  // Each pair of independent fits below runs on two threads (they only read the surfaces and
+  // the helix); each keeps its own errors.
+  Handle(Geom2d_BSplineCurve) tongue_up, tongue_dn;
+  double e2d_of[4] = {0, 0, 0, 0};
+  parallel_for(2, [&]() -> std::function<void(std::size_t)> {
+    return [&](std::size_t k) {
+      if (k == 0) tongue_up = tube_tongue(a2, a1, true, &e2d_of[0]);
+      else tongue_dn = tube_tongue(b1, b2, false, &e2d_of[1]);
+    };
+  });
+  if (tongue_up.IsNull() || tongue_dn.IsNull()) return {};
   const double Ua1 = tongue_time(a1, true, true), Ua2 = tongue_time(a2, true, true);
   const double Ub1 = tongue_time(b1, false, true), Ub2 = tongue_time(b2, false, true);
   if (!(Ua1 > 0 && Ua2 > 0 && Ub1 < T && Ub2 < T)) return {};
@@ -590,11 +620,11 @@ TopoDS_Shape ball_screw_sweep_overlap(const Eigen::Vector3d& c, double r, const 
     }
     return (to_eigen(ball->Value(*u, *v)) - y).norm();
   };
-  double proj_err = 0;
   // the ball's tongue from the rim point at v = vs to the one at ve, along the tube's tongue
   // (from tube v = ts to te, `up` for the tongue of the next turn)
   auto ball_tongue = [&](const Handle(Geom_BSplineSurface)& ball, const Eigen::Isometry3d& M, const Eigen::Vector3d& pole,
-                         double vs, double ve, double ts, double te, bool up, double* umax) {
+                         double vs, double ve, double ts, double te, bool up, double* umax, double* proj_err,
+                         double* e2d) {
     // which end of the tube's tongue is the rim point at vs
     const Eigen::Vector3d rs = to_eigen(ball->Value(0.0, vs));
     if ((tube_point(te, up, true) - rs).norm() < (tube_point(ts, up, true) - rs).norm()) std::swap(ts, te);
@@ -610,66 +640,84 @@ TopoDS_Shape ball_screw_sweep_overlap(const Eigen::Vector3d& c, double r, const 
         [&](double ph) {
           const double v = ts + (te - ts) * 0.5 * (1 - std::cos(ph));
           double pu, pv;
-          proj_err = std::max(proj_err, on_ball(ball, M, pole, tube_point(v, up, ph == 0 || ph == M_PI), &pu, &pv));
+          *proj_err = std::max(*proj_err, on_ball(ball, M, pole, tube_point(v, up, ph == 0 || ph == M_PI), &pu, &pv));
           const Eigen::Vector2d uv = Eigen::Vector2d(pu, pv) + d0 * (1 - ph / M_PI) + d1 * (ph / M_PI);
           *umax = std::max(*umax, uv(0));
           return Eigen::RowVector3d(uv(0), uv(1), 0.0);
         },
-        0.5 * fit_tol / (2 * r), &e2d);
+        0.5 * fit_tol / (2 * r), e2d);
   };
   const Eigen::Isometry3d MT = j.transform(T);
-  double umax_back = 0, umax_front = 0;
+  double umax_back = 0, umax_front = 0, proj_err_of[2] = {0, 0};
   // the start ball is covered by the next turn: the tube's tongue over [b1, b2] lies on it
-  Handle(Geom2d_BSplineCurve) back_tongue =
-      ball_tongue(tb.back, Eigen::Isometry3d::Identity(), -tb.t0, a2, a1, b1, b2, false, &umax_back);
-  Handle(Geom2d_BSplineCurve) front_tongue = ball_tongue(tb.front, MT, tb.t0, b2, b1, a1, a2, true, &umax_front);
+  Handle(Geom2d_BSplineCurve) back_tongue, front_tongue;
+  parallel_for(2, [&]() -> std::function<void(std::size_t)> {
+    return [&](std::size_t k) {
+      if (k == 0)
+        back_tongue = ball_tongue(tb.back, Eigen::Isometry3d::Identity(), -tb.t0, a2, a1, b1, b2, false, &umax_back,
+                                  &proj_err_of[0], &e2d_of[2]);
+      else
+        front_tongue = ball_tongue(tb.front, MT, tb.t0, b2, b1, a1, a2, true, &umax_front, &proj_err_of[1],
+                                   &e2d_of[3]);
+    };
+  });
   if (back_tongue.IsNull() || front_tongue.IsNull()) return {};
+  const double proj_err = std::max(proj_err_of[0], proj_err_of[1]);
   if (proj_err > 10 * tb.error + 1e-12 * size || umax_back >= 0.45 * M_PI || umax_front >= 0.45 * M_PI) return {};
+  const double e2d = *std::max_element(e2d_of, e2d_of + 4);
 
   // Guard: on grids over the tube and the half balls, the points that other balls of the sweep
-  // cover are those the tongues cut away (points close to a tongue's curve are not compared).
-  {
-    const double band = 1e-4 * r * r;
-    auto cover = [&](const Eigen::Vector3d& x, double lo1, double hi1, double lo2, double hi2) {
-      double d = 1e300;
-      if (hi1 > lo1) d = std::min(d, H.min_dist2(x, lo1, hi1, nullptr));
-      if (hi2 > lo2) d = std::min(d, H.min_dist2(x, lo2, hi2, nullptr));
-      return d - r * r;
-    };
-    for (int iu = 0; iu <= 40; ++iu)
+  // cover are those the tongues cut away (points close to a tongue's curve are not compared). In
+  // four parts (the tube's grid in two halves, each half ball), run while the faces are built.
+  const double band = 1e-4 * r * r;
+  auto cover = [&](const Eigen::Vector3d& x, double lo1, double hi1, double lo2, double hi2) {
+    double d = 1e300;
+    if (hi1 > lo1) d = std::min(d, H.min_dist2(x, lo1, hi1, nullptr));
+    if (hi2 > lo2) d = std::min(d, H.min_dist2(x, lo2, hi2, nullptr));
+    return d - r * r;
+  };
+  auto check_tube = [&](int iu0, int iu1) {
+    for (int iu = iu0; iu <= iu1; ++iu)
       for (int iv = 0; iv < 48; ++iv) {
         const double U = T * iu / 40, v = 2 * M_PI * (iv + 0.5) / 48;
         const double k = cover(to_eigen(tb.tube->Value(U, v)), std::max(0.0, U + M_PI), std::min(T, U + 3 * M_PI),
                                std::max(0.0, U - 3 * M_PI), std::min(T, U - M_PI));
         if (std::abs(k) < band) continue;
         const bool cut = (v > a1 && v < a2 && U < tongue_time(v, true)) || (v > b1 && v < b2 && U > tongue_time(v, false));
-        if ((k < 0) != cut) return {};
+        if ((k < 0) != cut) return false;
       }
-    auto inside = [](const std::vector<gp_Pnt2d>& poly, double x, double y) {
-      bool in = false;
-      for (std::size_t i = 0, n = poly.size(); i < n; ++i) {
-        const gp_Pnt2d& p = poly[i];
-        const gp_Pnt2d& q = poly[(i + 1) % n];
-        if ((p.Y() > y) != (q.Y() > y) && x < p.X() + (y - p.Y()) * (q.X() - p.X()) / (q.Y() - p.Y())) in = !in;
+    return true;
+  };
+  auto inside = [](const std::vector<gp_Pnt2d>& poly, double x, double y) {
+    bool in = false;
+    for (std::size_t i = 0, n = poly.size(); i < n; ++i) {
+      const gp_Pnt2d& p = poly[i];
+      const gp_Pnt2d& q = poly[(i + 1) % n];
+      if ((p.Y() > y) != (q.Y() > y) && x < p.X() + (y - p.Y()) * (q.X() - p.X()) / (q.Y() - p.Y())) in = !in;
+    }
+    return in;
+  };
+  auto check_ball = [&](const Handle(Geom_BSplineSurface)& ball, const Handle(Geom2d_BSplineCurve)& tongue,
+                        double lo, double hi) {
+    std::vector<gp_Pnt2d> poly;
+    for (int i = 0; i <= 200; ++i) poly.push_back(tongue->Value(M_PI * i / 200));  // closed by the rim
+    for (int iu = 1; iu <= 16; ++iu)
+      for (int iv = 0; iv < 48; ++iv) {
+        const double u = 0.5 * M_PI * iu / 16, v = 2 * M_PI * (iv + 0.5) / 48;
+        const double k = cover(to_eigen(ball->Value(u, v)), lo, hi, 0, 0);
+        if (std::abs(k) < band) continue;
+        if ((k < 0) != inside(poly, u, v)) return false;
       }
-      return in;
-    };
-    auto check_ball = [&](const Handle(Geom_BSplineSurface)& ball, const Handle(Geom2d_BSplineCurve)& tongue,
-                          double lo, double hi) {
-      std::vector<gp_Pnt2d> poly;
-      for (int i = 0; i <= 200; ++i) poly.push_back(tongue->Value(M_PI * i / 200));  // closed by the rim
-      for (int iu = 1; iu <= 16; ++iu)
-        for (int iv = 0; iv < 48; ++iv) {
-          const double u = 0.5 * M_PI * iu / 16, v = 2 * M_PI * (iv + 0.5) / 48;
-          const double k = cover(to_eigen(ball->Value(u, v)), lo, hi, 0, 0);
-          if (std::abs(k) < band) continue;
-          if ((k < 0) != inside(poly, u, v)) return false;
-        }
-      return true;
-    };
-    if (!check_ball(tb.back, back_tongue, up_lo, up_hi) || !check_ball(tb.front, front_tongue, T + dn_lo, T + dn_hi))
-      return {};
-  }
+    return true;
+  };
+  auto guard = [&](std::size_t part) {
+    switch (part) {
+      case 0: return check_tube(0, 20);
+      case 1: return check_tube(21, 40);
+      case 2: return check_ball(tb.back, back_tongue, up_lo, up_hi);
+      default: return check_ball(tb.front, front_tongue, T + dn_lo, T + dn_hi);
+    }
+  };
 
   // Faces. Edges are built on each face from their parameter-plane curves; sewing joins them.
   const double etol = std::max(1e-9 * size, 0.1 * fit_tol);
@@ -691,37 +739,53 @@ TopoDS_Shape ball_screw_sweep_overlap(const Eigen::Vector3d& c, double r, const 
   const double V = 2 * M_PI;
   // The tube: its parameter rectangle [0, T] x [0, 2 pi] without the two tongues, in two faces split
   // along v between the arcs (away from the seam), so that each line where the tube meets its next
-  // turn joins two different faces. Each face's boundary runs counterclockwise.
+  // turn joins two different faces. Each face's boundary runs counterclockwise in (time, angle);
+  // OCCT's face maker turns the wire round where the exchanged parameters below mirror it.
   const double vm = a2 < b1 ? 0.5 * (a2 + b1) : 0.5 * (b2 + a1);
+  // The faces' surface has the tube's parameters exchanged (u around the circle, v along the
+  // motion): OCCT's face integration runs an inner Gauss integral along u, from the face's lowest u
+  // to each point of the boundary lines along which v varies; this way those inner integrals cross
+  // the few spans of the circle instead of the many along the motion.
+  auto Q = [](double x, double y) { return gp_Pnt2d(y, x); };
+  auto exchanged = [](const Handle(Geom2d_BSplineCurve)& cv) {
+    Handle(Geom2d_BSplineCurve) e = Handle(Geom2d_BSplineCurve)::DownCast(cv->Copy());
+    for (int i = 1; i <= e->NbPoles(); ++i) {
+      const gp_Pnt2d p = e->Pole(i);
+      e->SetPole(i, gp_Pnt2d(p.Y(), p.X()));
+    }
+    return e;
+  };
+  const Handle(Geom2d_BSplineCurve) tongue_dn_x = exchanged(tongue_dn), tongue_up_x = exchanged(tongue_up);
   auto tube_face = [&](double vlo, double vhi) {
     // a surface of its own: the faces share edges whose parameter lines differ (v = a2 here is v =
     // b1 there), and edges with two parameter lines on one surface would read as seams
-    const Handle(Geom_Surface) tube = Handle(Geom_Surface)::DownCast(tb.tube->Copy());
-    std::vector<TopoDS_Edge> es{segment_on(tube, P(0, vlo), P(T, vlo), etol)};
+    const Handle(Geom_BSplineSurface) tx = Handle(Geom_BSplineSurface)::DownCast(tb.tube->Copy());
+    tx->ExchangeUV();
+    const Handle(Geom_Surface) tube(tx);
+    std::vector<TopoDS_Edge> es{segment_on(tube, Q(0, vlo), Q(T, vlo), etol)};
     double v = vlo;
     if (b1 > vlo && b2 < vhi) {  // the previous turn's tongue hangs from u = T
-      es.push_back(segment_on(tube, P(T, v), P(T, b1), etol));
-      es.push_back(segment_on(tube, P(T, b1), P(Ub1, b1), etol));
-      es.push_back(edge_on(tube, tongue_dn, 0, M_PI, etol));
-      es.push_back(segment_on(tube, P(Ub2, b2), P(T, b2), etol));
+      es.push_back(segment_on(tube, Q(T, v), Q(T, b1), etol));
+      es.push_back(segment_on(tube, Q(T, b1), Q(Ub1, b1), etol));
+      es.push_back(edge_on(tube, tongue_dn_x, 0, M_PI, etol));
+      es.push_back(segment_on(tube, Q(Ub2, b2), Q(T, b2), etol));
       v = b2;
     }
-    es.push_back(segment_on(tube, P(T, v), P(T, vhi), etol));
-    es.push_back(segment_on(tube, P(T, vhi), P(0, vhi), etol));
+    es.push_back(segment_on(tube, Q(T, v), Q(T, vhi), etol));
+    es.push_back(segment_on(tube, Q(T, vhi), Q(0, vhi), etol));
     v = vhi;
     if (a1 > vlo && a2 < vhi) {  // the next turn's tongue stands on u = 0
-      es.push_back(segment_on(tube, P(0, v), P(0, a2), etol));
-      es.push_back(segment_on(tube, P(0, a2), P(Ua2, a2), etol));
-      es.push_back(edge_on(tube, tongue_up, 0, M_PI, etol));
-      es.push_back(segment_on(tube, P(Ua1, a1), P(0, a1), etol));
+      es.push_back(segment_on(tube, Q(0, v), Q(0, a2), etol));
+      es.push_back(segment_on(tube, Q(0, a2), Q(Ua2, a2), etol));
+      es.push_back(edge_on(tube, tongue_up_x, 0, M_PI, etol));
+      es.push_back(segment_on(tube, Q(Ua1, a1), Q(0, a1), etol));
       v = a1;
     }
-    es.push_back(segment_on(tube, P(0, v), P(0, vlo), etol));
+    es.push_back(segment_on(tube, Q(0, v), Q(0, vlo), etol));
     if (!face_of(tube, es)) return false;
     rl.push_back(0);
     return true;
   };
-  if (!tube_face(0, vm) || !tube_face(vm, V)) return {};
   // each half ball: a band from the rim to u_cut without its tongue, and the cap beyond
   auto ball_faces = [&](const Handle(Geom_BSplineSurface)& ball, const Handle(Geom2d_BSplineCurve)& tongue,
                         double v1, double v2, double umax, int role) {
@@ -738,11 +802,29 @@ TopoDS_Shape ball_screw_sweep_overlap(const Eigen::Vector3d& c, double r, const 
     rl.push_back(role);
     return true;
   };
-  if (!ball_faces(tb.back, back_tongue, a1, a2, umax_back, 1)) return {};
-  if (!ball_faces(tb.front, front_tongue, b1, b2, umax_front, 2)) return {};
   err += e2d * speed;
-  TopoDS_Shape solid = sew_solid(fs, std::max(1e-7 * size, 20 * err));
-  if (solid.IsNull()) return {};
+  // Outwards on the first tube face: at mid-time, on the arc of the circle before both tongues'
+  // arcs (v = 0 is the middle of the gap between them), away from the centre's helix.
+  OutwardHint out;
+  out.face = 0;
+  out.u = 0.5 * std::min(a1, b1);
+  out.v = 0.5 * T;
+  const Eigen::Vector3d away = to_eigen(tb.tube->Value(out.v, out.u)) - H.pos(out.v);
+  out.out = gp_Vec(away.x(), away.y(), away.z());
+  // The faces and their sewing on one thread, the guard's parts on the other.
+  TopoDS_Shape solid;
+  char guard_ok[4] = {0, 0, 0, 0};
+  parallel_for(5, [&]() -> std::function<void(std::size_t)> {
+    return [&](std::size_t task) {
+      if (task > 0) {
+        guard_ok[task - 1] = guard(task - 1);
+      } else if (tube_face(0, vm) && tube_face(vm, V) && ball_faces(tb.back, back_tongue, a1, a2, umax_back, 1) &&
+                 ball_faces(tb.front, front_tongue, b1, b2, umax_front, 2)) {
+        solid = sew_solid(fs, std::max(1e-7 * size, 20 * err), &out);
+      }
+    };
+  });
+  if (solid.IsNull() || !std::all_of(guard_ok, guard_ok + 4, [](char ok) { return ok != 0; })) return {};
   *fit_err = std::max(*fit_err, err);
   if (faces) *faces = fs;
   if (roles) *roles = rl;

@@ -115,8 +115,19 @@ TopoDS_Shape ball_screw_sweep_overlap(const Eigen::Vector3d& c, double r, const 
 /// The axis-aligned box of a shape's vertices, edges and (trimmed) faces, without enlargement.
 Bnd_Box shape_box(const TopoDS_Shape& s);
 
-/// Sews faces into one closed solid, oriented outwards (null when they do not make one shell).
-TopoDS_Shape sew_solid(const std::vector<TopoDS_Face>& fs, double tol);
+/// A direction known to point out of the solid at one point of one of the faces to be sewn:
+/// face `face` of the list, at (u, v) of its surface, where the outward direction is `out`.
+struct OutwardHint {
+  std::size_t face = 0;
+  double u = 0, v = 0;
+  gp_Vec out;
+};
+
+/// Sews faces into one closed solid, oriented outwards (null when they do not make one shell): by
+/// the hint when one is given and its surface normal is not tangent to `out`, else by classifying
+/// a point at infinity (OCCT's solid classifier, which costs tens of milliseconds on trimmed
+/// B-spline faces).
+TopoDS_Shape sew_solid(const std::vector<TopoDS_Face>& fs, double tol, const OutwardHint* hint = nullptr);
 
 /// The solid swept by a face translated by L along the unit direction d of prismatic joint j, built
 /// directly when the face is a graph along d: n . d keeps one sign on it and its boundary, without seams and collapsed
