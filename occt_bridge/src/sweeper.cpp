@@ -1028,17 +1028,18 @@ SolidChecks check_solid(const TopoDS_Shape& result) {
   if (nv > 0) P /= nv;
   double volume[2] = {0, 0};
   gp_XYZ moment[2] = {gp_XYZ(0, 0, 0), gp_XYZ(0, 0, 0)};
-  // Tasks, the costliest first: OCCT's integral of the two parts, the divergence integral face by
-  // face, the box, validity and closedness.
+  // Tasks, the long ones first so that the short ones fill in behind them: OCCT's integral of the
+  // two parts, the box, validity and closedness, then the divergence integral face by face (the
+  // costliest faces first).
   const std::size_t nf = faces.size();
   std::vector<std::pair<double, double>> div_area(nf);
   parallel_for(nf + 4, [&]() -> std::function<void(std::size_t)> {
     return [&](std::size_t task) {
       if (task < 2) {
         occt_volume_of_faces(part[task], gp_Pnt(P), 1e-10, &volume[task], &moment[task]);
-      } else if (task < nf + 2) {
-        div_area[task - 2] = face_divergence_and_area(faces[task - 2].second);
-      } else if (task == nf + 2) {
+      } else if (task >= 4) {
+        div_area[task - 4] = face_divergence_and_area(faces[task - 4].second);
+      } else if (task == 2) {
         c.box = shape_box(result);
       } else {
         c.valid = BRepCheck_Analyzer(result).IsValid();
