@@ -1,8 +1,4 @@
 // A `brep` entity read from a STEP file the test writes: a box with a cylindrical through hole.
-#include <BRepAlgoAPI_Cut.hxx>
-#include <BRepPrimAPI_MakeBox.hxx>
-#include <BRepPrimAPI_MakeCylinder.hxx>
-#include <STEPControl_Writer.hxx>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <fstream>
@@ -10,25 +6,11 @@
 #include "occt_bridge/sweeper.hpp"
 #include "sweep/error.hpp"
 #include "sweep/spec.hpp"
+#include "util/box_hole.hpp"
 #include "util/cases.hpp"
 
-namespace {
-
-std::string write_box_with_hole(const std::string& dir) {
-  TopoDS_Shape box = BRepPrimAPI_MakeBox(gp_Pnt(-1, -1, 0), gp_Pnt(1, 1, 1)).Shape();
-  TopoDS_Shape hole = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, -1), gp_Dir(0, 0, 1)), 0.5, 3).Shape();
-  TopoDS_Shape part = BRepAlgoAPI_Cut(box, hole).Shape();
-  const std::string path = dir + "/box_hole.step";
-  STEPControl_Writer w;
-  REQUIRE(w.Transfer(part, STEPControl_AsIs) == IFSelect_RetDone);
-  REQUIRE(w.Write(path.c_str()) == IFSelect_RetDone);
-  return path;
-}
-
-}  // namespace
-
 TEST_CASE("Brep entity: box with a hole from STEP, extruded along the hole") {
-  write_box_with_hole(SWEEP_BINARY_DIR);
+  REQUIRE(sweep_test::write_box_with_hole(SWEEP_BINARY_DIR "/box_hole.step"));
   // The example spec, with its relative file name resolved in the build tree.
   const std::string text = sweep_test::read_text(SWEEP_SOURCE_DIR "/examples/brep_box_hole.json");
   sweep::Spec spec = sweep::parse_spec(text, SWEEP_BINARY_DIR);
