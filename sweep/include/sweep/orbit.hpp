@@ -1,0 +1,86 @@
+#pragma once
+/// @file orbit.hpp
+/// Orbits of one screw joint, and solids met by orbits in closed form.
+///
+/// Under a screw joint a point y moves along its orbit p(t) = exp(xi t) y: a circle about the axis
+/// (revolute), a helix (helical) or a line (prismatic). In coordinates whose coordinate lines are the
+/// orbits the joint is a translation along them, so the sweep of a solid B over t in [0, T] meets an
+/// orbit in the union of B's intervals on it, each extended by T. Membership in the sweep and its
+/// volume need nothing but those intervals, which this file computes without any boundary
+/// representation: each primitive's inside is a few inequalities g(t) <= 0 where g is a polynomial in
+/// t, cos t and sin t along the orbit, whose roots are isolated with a certified bound.
+#include <Eigen/Geometry>
+#include <memory>
+#include <utility>
+#include <vector>
+
+#include "sweep/motion.hpp"
+#include "sweep/spec.hpp"
+
+namespace sweep {
+
+/// Sorted, disjoint closed intervals of a parameter.
+using Intervals = std::vector<std::pair<double, double>>;
+
+Intervals unite(const Intervals& a, const Intervals& b);
+Intervals intersect(const Intervals& a, const Intervals& b);
+/// a minus the interior of b (closed result).
+Intervals subtract(const Intervals& a, const Intervals& b);
+double total_length(const Intervals& a);
+
+/// p(t) = c + a cos t + b sin t + d t: an orbit, or its image under a rigid map.
+struct OrbitCurve {
+  Eigen::Vector3d c = Eigen::Vector3d::Zero(), a = Eigen::Vector3d::Zero(), b = Eigen::Vector3d::Zero(),
+                  d = Eigen::Vector3d::Zero();
+  Eigen::Vector3d at(double t) const;
+  /// The image under the rigid map T (same parameter).
+  OrbitCurve mapped(const Eigen::Isometry3d& T) const;
+  /// The same curve with its parameter shifted: result.at(s) == at(s + t0).
+  OrbitCurve shifted(double t0) const;
+};
+
+/// The orbit of y under joint j: exp(xi t) y as a function of t.
+OrbitCurve orbit_of(const ScrewJoint& j, const Eigen::Vector3d& y);
+
+/// A solid whose intersection with any orbit is computed exactly (to rounding).
+class OrbitSolid {
+ public:
+  virtual ~OrbitSolid() = default;
+  /// The parameters t in [lo, hi] at which the curve lies in the solid.
+  virtual Intervals on_curve(const OrbitCurve& o, double lo, double hi) const = 0;
+  virtual bool contains(const Eigen::Vector3d& p) const = 0;
+  /// A box that contains the solid.
+  virtual Eigen::AlignedBox3d bounds() const = 0;
+};
+using OrbitSolidPtr = std::shared_ptr<const OrbitSolid>;
+
+/// The primitive solid entities (sphere, box, cylinder, cone, torus, elliptic cylinder without
+/// twist) with their placement; nullptr for other kinds.
+OrbitSolidPtr make_orbit_solid(const EntitySpec& e);
+
+/// Building blocks, in the frame they are given in.
+OrbitSolidPtr orbit_halfspace(const Eigen::Vector3d& normal, double offset);  ///< normal . p <= offset
+OrbitSolidPtr orbit_box(const Eigen::Vector3d& min, const Eigen::Vector3d& max);
+OrbitSolidPtr orbit_sphere(const Eigen::Vector3d& centre, double radius);
+/// Cylinder from `base` along unit `axis`, and the frustum from radius r1 at base to r2 at height.
+OrbitSolidPtr orbit_cylinder(const Eigen::Vector3d& base, const Eigen::Vector3d& axis, double radius, double height);
+OrbitSolidPtr orbit_cone(const Eigen::Vector3d& base, const Eigen::Vector3d& axis, double r1, double r2, double height);
+OrbitSolidPtr orbit_torus(const Eigen::Vector3d& centre, const Eigen::Vector3d& axis, double major, double minor);
+OrbitSolidPtr orbit_union(std::vector<OrbitSolidPtr> parts);
+OrbitSolidPtr orbit_intersection(std::vector<OrbitSolidPtr> parts);
+OrbitSolidPtr orbit_difference(OrbitSolidPtr a, OrbitSolidPtr b);
+OrbitSolidPtr orbit_placed(OrbitSolidPtr s, const Eigen::Isometry3d& placement);
+
+/// The sweep of `body` (in its position at t = 0) by joint j over t in [0, T] (a revolute T is taken
+/// modulo nothing: T >= 2 pi covers whole circles). True when some t puts exp(-xi t) x in the body.
+bool in_joint_sweep(const OrbitSolid& body, const ScrewJoint& j, double T, const Eigen::Vector3d& x);
+
+/// The volume of that sweep, integrated over the space of orbits: the measure of each orbit's part in
+/// the sweep (the union of the body's intervals, each extended by T) times the orbits' density.
+/// Breakpoints where that union changes its structure are located, and each smooth piece is
+/// integrated by double-exponential quadrature, nested twice. `rel_tol` is the target relative
+/// accuracy; `error`, when given, receives an estimate of the absolute error.
+double joint_sweep_volume(const OrbitSolid& body, const ScrewJoint& j, double T, double rel_tol = 1e-9,
+                          double* error = nullptr);
+
+}  // namespace sweep

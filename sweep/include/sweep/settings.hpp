@@ -1,0 +1,44 @@
+#pragma once
+/// @file settings.hpp
+/// Every tolerance and sampling constant of a run, with its default. "x size" marks a fraction of
+/// the model size (the largest extent of the box that holds the swept set), "x tol" a multiple of
+/// the requested tolerance.
+#include <cstddef>
+#include <cstdint>
+
+namespace sweep {
+
+struct Settings {
+  // --- tolerances
+  /// The requested tolerance when the spec gives none (x size).
+  double default_tolerance = 1e-6;
+  /// Fitted curves and surfaces are fitted to this (x tol), so that their error stays well inside
+  /// the requested tolerance.
+  double fit_fraction = 0.01;
+  /// B-rep and divergence volumes may differ by this relative amount (the two integrations'
+  /// rounding), plus tol times the model's surface scale (size^2).
+  double volume_relative_band = 1e-9;
+
+  // --- the verdict: the solid against a membership test that does not use it
+  /// Points sampled uniformly in the box that holds the swept set.
+  std::size_t verdict_samples = 4096;
+  /// Points on the solid's faces, each tested just outside and just inside the boundary.
+  std::size_t verdict_probes = 512;
+  /// How far off the boundary the probes lie (x tol); probes lie at least ten times that from the
+  /// solid's edges.
+  double probe_offset = 4;
+  /// Linear deflection of the triangulation the samples are classified against (x size); samples
+  /// within three deflections plus the tolerance of the triangulated boundary are left out (the
+  /// probes test that band).
+  double verdict_deflection = 2e-3;
+  /// One-sided confidence of the bound on the volume of the symmetric difference.
+  double confidence = 0.95;
+  /// Seed of every sampler (runs are deterministic).
+  std::uint64_t seed = 20261123;
+
+  // --- --verify
+  /// Monte Carlo samples of the independent volume (one joint; chains take an eighth, at least 20000).
+  std::size_t mc_samples = 400000;
+};
+
+}  // namespace sweep
