@@ -20,7 +20,7 @@ namespace {
 sweep::occt::RunResult run_verified(const std::string& example, std::size_t mc_samples) {
   sweep::occt::RunOptions opt;
   opt.verify = true;
-  opt.mc_samples = mc_samples;
+  opt.settings.mc_samples = mc_samples;
   return sweep::occt::run_sweep(sweep::load_spec(SWEEP_SOURCE_DIR "/examples/" + example), opt);
 }
 

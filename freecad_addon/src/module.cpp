@@ -175,8 +175,8 @@ py::dict run(const py::handle& spec, const std::string& base_dir, const std::vec
   Prepared p = prepare(spec, base_dir, overrides, entity_brep, source);
   sweep::occt::RunOptions opt;
   opt.verify = verify;
-  opt.mc_samples = mc_samples;
-  opt.mc_seed = mc_seed;
+  opt.settings.mc_samples = mc_samples;
+  opt.settings.seed = mc_seed;
   std::string brep;
   sweep::occt::RunResult r = guarded_run(p, opt, source, &brep);
   py::dict out;
@@ -257,8 +257,8 @@ PYBIND11_MODULE(_sweepcore, m) {
 
   m.def("run", &run, py::arg("spec"), py::arg("base_dir") = std::string(),
         py::arg("overrides") = std::vector<std::string>(), py::arg("entity_brep") = py::none(),
-        py::arg("verify") = false, py::arg("mc_samples") = sweep::occt::RunOptions().mc_samples,
-        py::arg("mc_seed") = sweep::occt::RunOptions().mc_seed, py::arg("source") = std::string(),
+        py::arg("verify") = false, py::arg("mc_samples") = sweep::Settings().mc_samples,
+        py::arg("mc_seed") = sweep::Settings().seed, py::arg("source") = std::string(),
         R"(Computes the solid swept by a spec v1.
 
 spec: JSON text or a dict. base_dir: directory that relative file names are resolved against.

@@ -159,6 +159,16 @@ void parallel_for(std::size_t n, const std::function<std::function<void(std::siz
 /// A point membership test, and a maker of one per thread.
 using PointTest = std::function<bool(const Eigen::Vector3d&)>;
 using PointTestMaker = std::function<PointTest()>;
+/// A membership test that may not decide: 1 in, 0 out, -1 undecided.
+using MemberTest = std::function<int(const Eigen::Vector3d&)>;
+using MemberTestMaker = std::function<MemberTest()>;
+/// A decided test seen as a test that may not decide.
+inline MemberTestMaker always_decided(PointTestMaker m) {
+  return [m]() -> MemberTest {
+    PointTest t = m();
+    return [t](const Eigen::Vector3d& x) { return t(x) ? 1 : 0; };
+  };
+}
 
 /// The solid bounded by the split faces of an arrangement that separate the set (given by point
 /// membership, a test per thread from `member`) from its complement, each oriented outward; null
@@ -198,6 +208,9 @@ TopoDS_Shape read_shape_file(const std::string& path, const std::string& pointer
 }  // namespace sweep::occt
 
 namespace sweep::occt {
+/// Replaces each pcurve of the face that strays from its edge by more than tol by a projection
+/// of the edge onto the surface, and sets the edge's tolerance from the deviation measured.
+void tighten_pcurves(const TopoDS_Face& face, double tol);
 /// The curve as an exact line or circle when it is one within `tol` (fitted grazing curves of
 /// planes and spheres are), else itself. first/last are updated to the new parametrization.
 Handle(Geom_Curve) canonical_curve(const Handle(Geom_Curve)& c, double& first, double& last, double tol);

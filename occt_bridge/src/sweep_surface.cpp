@@ -4,6 +4,11 @@
 #include <BRepGProp.hxx>
 #include <GProp_GProps.hxx>
 #include <ShapeFix_Face.hxx>
+#include <ShapeAnalysis_Edge.hxx>
+#include <GeomProjLib.hxx>
+#include <Geom2d_Curve.hxx>
+#include <BRep_Builder.hxx>
+#include <BRep_Tool.hxx>
 #include <Geom_SphericalSurface.hxx>
 #include <Geom_ToroidalSurface.hxx>
 #include <BRepBuilderAPI_Transform.hxx>
@@ -278,6 +283,7 @@ std::vector<TopoDS_Face> sphere_patch(const Handle(Geom_Circle)& c, double first
       BRepGProp::SurfaceProperties(f, g, 1e-9);
       if (g.Mass() > 0) break;
     }
+    tighten_pcurves(f, std::max(tol, 1e-9));
     if (!BRepCheck_Analyzer(f).IsValid()) return {};
     const double area = R * R * (t1 - t0) * std::abs(std::sin(lb) - std::sin(la));
     if (std::abs(g.Mass() - area) > 1e-6 * area) return {};
@@ -287,6 +293,33 @@ std::vector<TopoDS_Face> sphere_patch(const Handle(Geom_Circle)& c, double first
 }
 
 }  // namespace
+
+void tighten_pcurves(const TopoDS_Face& face, double tol) {
+  ShapeAnalysis_Edge sae;
+  BRep_Builder bb;
+  TopLoc_Location loc;
+  const Handle(Geom_Surface) surface = BRep_Tool::Surface(face, loc);
+  if (!loc.IsIdentity()) return;
+  for (TopExp_Explorer ex(face, TopAbs_EDGE); ex.More(); ex.Next()) {
+    TopoDS_Edge e = TopoDS::Edge(ex.Current());
+    if (BRep_Tool::Degenerated(e) || BRep_Tool::IsClosed(e, face)) continue;
+    double dev = 0;
+    sae.CheckSameParameter(e, face, dev, 23);
+    if (dev <= tol) continue;
+    double f, l;
+    TopLoc_Location cl;
+    Handle(Geom_Curve) c = BRep_Tool::Curve(e, cl, f, l);
+    if (c.IsNull() || !cl.IsIdentity()) continue;
+    double achieved = tol;
+    Handle(Geom2d_Curve) pc = GeomProjLib::Curve2d(c, f, l, surface, achieved);
+    if (pc.IsNull()) continue;
+    const TopoDS_Edge saved = e;
+    bb.UpdateEdge(e, pc, face, BRep_Tool::Tolerance(e));
+    double dev2 = 0;
+    sae.CheckSameParameter(e, face, dev2, 23);
+    if (dev2 < dev) bb.UpdateEdge(e, std::max(1.5 * dev2, 1e-7));
+  }
+}
 
 Handle(Geom_Curve) canonical_curve(const Handle(Geom_Curve)& c0, double& first, double& last, double tol) {
   Handle(Geom_Curve) c = c0;

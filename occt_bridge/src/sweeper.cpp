@@ -8,6 +8,7 @@
 #include <BRepAlgoAPI_Fuse.hxx>
 #include <BRepAlgoAPI_Splitter.hxx>
 #include <BRepBndLib.hxx>
+#include <BRepExtrema_DistShapeShape.hxx>
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_Transform.hxx>
 #include <BRepCheck_Analyzer.hxx>
@@ -44,7 +45,9 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
 #include <map>
+#include <numeric>
 #include <memory>
 #include <random>
 #include <sstream>
@@ -52,6 +55,10 @@
 #include "internal.hpp"
 #include "sweep/error.hpp"
 #include "sweep/membership.hpp"
+#include "sweep/orbit.hpp"
+#include "sweep/swept_box.hpp"
+#include "boundary_sweep.hpp"
+#include "verdict.hpp"
 
 namespace sweep::occt {
 
@@ -81,6 +88,18 @@ nlohmann::json Report::to_json() const {
   j["restored_candidates"] = nlohmann::json::array();
   for (const auto& [stage, faces] : restored_candidates)
     j["restored_candidates"].push_back({{"stage", stage}, {"faces", faces}});
+  if (has_verdict)
+    j["verify"] = {{"samples", verdict_samples},
+                   {"mismatches", verdict_mismatches + verdict_probe_mismatches},
+                   {"difference_bound", verdict_difference_bound},
+                   {"near_boundary", verdict_near_boundary},
+                   {"probes", verdict_probes},
+                   {"probe_mismatches", verdict_probe_mismatches},
+                   {"undecided", verdict_undecided},
+                   {"probe_undecided", verdict_probe_undecided},
+                   {"probe_offset", verdict_probe_offset},
+                   {"box_volume", verdict_box_volume},
+                   {"membership", verdict_membership}};
   j["dimension"] = dimension;
   j["tolerance"] = {{"requested", tol_requested}, {"achieved", tol_achieved}};
   nlohmann::json s = seconds;
@@ -144,6 +163,24 @@ bool interior_point(const TopoDS_Solid& cell, double size, Eigen::Vector3d* out)
     }
   }
   return false;
+}
+
+/// The number of connected groups among the solids, two solids being connected when they come
+/// within `gap` of each other.
+int separate_parts(const std::vector<TopoDS_Shape>& parts, double gap) {
+  const int n = int(parts.size());
+  std::vector<int> group(n);
+  std::iota(group.begin(), group.end(), 0);
+  std::function<int(int)> root = [&](int x) { return group[x] == x ? x : group[x] = root(group[x]); };
+  for (int a = 0; a < n; ++a)
+    for (int b = a + 1; b < n; ++b) {
+      if (root(a) == root(b)) continue;
+      BRepExtrema_DistShapeShape dist(parts[a], parts[b]);
+      if (dist.IsDone() && dist.Value() <= gap) group[root(b)] = root(a);
+    }
+  int groups = 0;
+  for (int k = 0; k < n; ++k) groups += root(k) == k;
+  return groups;
 }
 
 double max_tolerance(const TopoDS_Shape& s) {
@@ -355,6 +392,29 @@ std::vector<std::pair<int, std::vector<TopoDS_Face>>> revolve_pieces(const std::
   return out;
 }
 
+/// Valid and closed (the checks a directly built solid must pass to be used).
+bool valid_and_closed(const TopoDS_Shape& s) {
+  if (s.IsNull() || !BRepCheck_Analyzer(s).IsValid()) return false;
+  ShapeAnalysis_Shell sas;
+  sas.LoadShells(s);
+  return !sas.CheckOrientedShells(s, true) && !sas.HasFreeEdges();
+}
+
+/// A ball under a screw motion, built directly as a tube about its centre's helix closed by two
+/// half balls (trimmed where neighbouring turns overlap); null when `body` is not one ball or the
+/// build is not valid and closed. `faces` and `roles` (0 tube, 1 start, 2 end) describe it.
+TopoDS_Shape direct_ball_screw(const TopoDS_Shape& body, const ScrewJoint& j, double T, double fit_tol, double size,
+                               double tol, double* fit_err, std::vector<TopoDS_Face>* faces, std::vector<int>* roles) {
+  Eigen::Vector3d centre;
+  double radius = 0;
+  if (j.type != JointType::Helical || j.pitch == 0 || !sphere_of(body, &centre, &radius)) return {};
+  *roles = {0, 1, 2};
+  const TopoDS_Shape direct = helix_reach_exceeds(j, centre, T, radius, std::max(1e-6 * radius, 100 * tol))
+                                  ? ball_screw_sweep(centre, radius, j, T, fit_tol, size, fit_err, faces)
+                                  : ball_screw_sweep_overlap(centre, radius, j, T, fit_tol, size, fit_err, faces, roles);
+  return valid_and_closed(direct) ? direct : TopoDS_Shape();
+}
+
 /// One stage: the solid swept by `body` (a solid, or faces when dim == 2) under joint j for
 /// q in [0, T]. `sd`, when given, is the entity's signed distance, or `pe` its parametric map, and
 /// `sd_motion` the motion that carries the entity to this stage's swept set (for the membership
@@ -390,27 +450,15 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
                        "'s range",
                    {{qn, end ? T : 0.0}}, nlohmann::json::object());
   };
-  // a directly built solid is used when it is valid and closed
-  auto valid_and_closed = [](const TopoDS_Shape& s) {
-    if (s.IsNull() || !BRepCheck_Analyzer(s).IsValid()) return false;
-    ShapeAnalysis_Shell sas;
-    sas.LoadShells(s);
-    return !sas.CheckOrientedShells(s, true) && !sas.HasFreeEdges();
-  };
   // A ball whose centre's helix has a reach above its radius sweeps a tube closed by two half
   // balls: built directly, without an arrangement, when the build is valid and closed.
   if (dim == 3 && j.type == JointType::Helical && j.pitch != 0) {
-    Eigen::Vector3d centre;
-    double radius = 0;
-    if (sphere_of(body, &centre, &radius)) {
-      double err = fit_err;
-      std::vector<TopoDS_Face> fs;
-      std::vector<int> roles{0, 1, 2};
-      TopoDS_Shape direct =
-          helix_reach_exceeds(j, centre, T, radius, std::max(1e-6 * radius, 100 * tol))
-              ? ball_screw_sweep(centre, radius, j, T, fit_tol, size, &err, &fs)
-              : ball_screw_sweep_overlap(centre, radius, j, T, fit_tol, size, &err, &fs, &roles);
-      if (valid_and_closed(direct)) {
+    double err = fit_err;
+    std::vector<TopoDS_Face> fs;
+    std::vector<int> roles;
+    const TopoDS_Shape direct = direct_ball_screw(body, j, T, fit_tol, size, tol, &err, &fs, &roles);
+    {
+      if (!direct.IsNull()) {
         fit_err = err;
         const int tube = variety("interior", "grazing curve (n . v = 0) on entity face 1 swept by joint " +
                                                  std::to_string(joint_no) + " (a tube about the centre's helix)",
@@ -1169,7 +1217,82 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
         shape = point_sweep(body, j, T, fit_tol, size);
       } else if (dim == 1) {
         shape = curve_sweep(body, j, T, tol, fit_tol, size, &fit_err);
-      } else {
+      }
+      // The sweep-boundary engine builds the entity's own stage (a solid); later stages of chains,
+      // and a stage it cannot build, go through the arrangement of cells.
+      bool built = dim <= 1;
+      if (!built && dim == 3 && i == n - 1 && !std::getenv("SWEEP_CELLS_ENGINE")) {
+        // A solid: built directly when it is a ball under a screw, else from its sweep boundary,
+        // whose pieces are classified by the entity's orbit intervals (a primitive's first stage)
+        // or by trajectories against the body's faces.
+        const auto t_stage = Clock::now();
+        Candidates stage_cands;
+        std::vector<TopoDS_Face> direct_faces;
+        std::vector<int> roles;
+        double err = fit_err;
+        TopoDS_Shape direct = opt.direct_builds ? direct_ball_screw(body, j, T, fit_tol, size, tol, &err, &direct_faces, &roles)
+                                                : TopoDS_Shape();
+        if (!direct.IsNull()) {
+          fit_err = err;
+          const int tube = stage_cands.add_variety(
+              {n - i, i + 1, "interior", "grazing curve (n . v = 0) swept by joint " + std::to_string(i + 1) +
+                                             " (a tube about the centre's helix)"});
+          const int lo_id = stage_cands.add_variety({n - i, i + 1, "limit", "the entity at the start of the range"});
+          const int hi_id = stage_cands.add_variety({n - i, i + 1, "limit", "the entity at the end of the range"});
+          for (std::size_t k = 0; k < direct_faces.size(); ++k)
+            stage_cands.add(roles[k] == 0 ? tube : roles[k] == 1 ? lo_id : hi_id, {direct_faces[k]}, true);
+          rep.varieties += 3;
+          rep.cells += 1;
+          shape = direct;
+          built = true;
+        } else {
+          PointTestMaker stage_member;
+          const OrbitSolidPtr orbit_entity = i == n - 1 ? make_orbit_solid(spec.entity) : nullptr;
+          if (orbit_entity) {
+            const OrbitSolidPtr start = orbit_placed(orbit_entity, j.transform(j.lo) * G);
+            stage_member = [start, j, T]() -> PointTest {
+              return [start, j, T](const Eigen::Vector3d& x) { return in_joint_sweep(*start, j, T, x); };
+            };
+          } else {
+            const double ttol = 1e-9 * size;
+            stage_member = [body, j, T, ttol]() -> PointTest {
+              auto test = std::make_shared<TrajectoryMembership>(body, true, j, T, ttol);
+              return [test](const Eigen::Vector3d& x) { return (*test)(x); };
+            };
+          }
+          BoundarySweep b = boundary_sweep(body, j, T, stage_member, size, tol, opt.settings, n - i, i + 1);
+          for (auto it = b.seconds.begin(); it != b.seconds.end(); ++it)
+            rep.seconds[it.key()] = rep.seconds.value(it.key(), 0.0) + it.value().get<double>();
+          if (b.solid.IsNull()) {
+            if (opt.progress) opt.progress("stage " + std::to_string(n - i) + ": " + b.failure + "; built from cells instead");
+          } else {
+            fit_err = std::max(fit_err, b.fit_error);
+            for (auto& v : b.varieties) stage_cands.add_variety(std::move(v));
+            for (std::size_t k = 0; k < b.candidate_faces.size(); ++k)
+              stage_cands.add(b.candidate_ids[k], {b.candidate_faces[k]});
+            rep.varieties += int(stage_cands.vars.size());
+            rep.cells += 1;
+            shape = b.solid;
+            built = true;
+          }
+        }
+        rep.seconds["stages"] = rep.seconds.value("stages", 0.0) + since(t_stage);
+        if (!built) {
+          // the arrangement of cells below
+        } else if (i == 0) {
+          last_cands = std::move(stage_cands);
+        } else if (opt.varieties) {
+          stage_cands.compute_areas();
+          opt.varieties->insert(opt.varieties->end(), stage_cands.vars.begin(), stage_cands.vars.end());
+        }
+        TopExp_Explorer sx(shape, TopAbs_SOLID);
+        if (sx.More()) {
+          TopoDS_Shape first = sx.Current();
+          sx.Next();
+          if (!sx.More()) shape = first;
+        }
+      }
+      if (!built) {
         Motion sd_motion;
         sd_motion.home = G;
         sd_motion.joints = {j};
@@ -1277,7 +1400,58 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
       return res;
     }
 
-    // The checks on the final solid, validation then containment: the reason it fails, if any.
+    // A membership test that never looks at the computed solid, for the verdict: the entity's
+    // orbit intervals for a primitive under one joint, the trajectory's intersections with the
+    // entity's own faces for other solids under one joint, the certified search over the joint box
+    // for primitives under chains and for points, curves and surfaces.
+    Motion clipped = motion;  // a revolute joint beyond a whole turn covers nothing new
+    for (auto& jj : clipped.joints)
+      if (jj.type == JointType::Revolute && jj.hi - jj.lo > 2 * M_PI) jj.hi = jj.lo + 2 * M_PI;
+    MemberTestMaker independent;
+    const OrbitSolidPtr orbit_entity = make_orbit_solid(spec.entity);
+    if (n == 1 && orbit_entity) {
+      const ScrewJoint j = clipped.joints[0];
+      const OrbitSolidPtr start = orbit_placed(orbit_entity, j.transform(j.lo) * motion.home);
+      independent = always_decided([start, j]() -> PointTest {
+        return [start, j](const Eigen::Vector3d& x) { return in_joint_sweep(*start, j, j.hi - j.lo, x); };
+      });
+      rep.verdict_membership = "orbit intervals of the entity";
+    } else if (n == 1 && spec.entity.dimension() == 3) {
+      const ScrewJoint j = clipped.joints[0];
+      const TopoDS_Shape body = moved(moved(raw, motion.home), j.transform(j.lo));
+      const double ttol = 1e-9 * size;
+      independent = always_decided([body, j, ttol]() -> PointTest {
+        auto test = std::make_shared<TrajectoryMembership>(body, true, j, j.hi - j.lo, ttol);
+        return [test](const Eigen::Vector3d& x) { return (*test)(x); };
+      });
+      rep.verdict_membership = "trajectories against the entity's faces";
+    } else if (sd) {
+      const SignedDistance* sdp = sd.get();
+      const std::size_t budget = opt.settings.membership_budget;
+      independent = [sdp, clipped, size, budget]() -> MemberTest {
+        return [sdp, clipped, size, budget](const Eigen::Vector3d& x) {
+          return swept_set_membership(*sdp, clipped, x, 1e-9 * size, budget);
+        };
+      };
+      rep.verdict_membership = "certified search over the joint box (signed distance)";
+    } else if (pe) {
+      const ParametricEntity* pep = pe.get();
+      independent = always_decided([pep, clipped, size]() -> PointTest {
+        return [pep, clipped, size](const Eigen::Vector3d& x) { return in_swept_image(*pep, clipped, x, 1e-9 * size, size); };
+      });
+      rep.verdict_membership = "certified search over the joint and entity parameters";
+    }
+    // The box that holds the true swept set: from the entity's box and the motion.
+    const Eigen::AlignedBox3d entity_box = [&] {
+      const Bnd_Box b = shape_box(raw);
+      double x0, y0, z0, x1, y1, z1;
+      b.Get(x0, y0, z0, x1, y1, z1);
+      return Eigen::AlignedBox3d(Eigen::Vector3d(x0, y0, z0), Eigen::Vector3d(x1, y1, z1));
+    }();
+    const Eigen::AlignedBox3d true_box = swept_box(entity_box, clipped);
+
+    // The checks on the final solid: the reason it fails, if any. Bands come from the requested
+    // tolerance and the model size, never from what the computation achieved.
     const std::string invalid = "the solid is not valid (BRepCheck)";
     auto check_result = [&](const TopoDS_Shape& solid) -> std::string {
       const auto t_val = Clock::now();
@@ -1289,81 +1463,60 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
       rep.area = checks.area;
       rep.faces = 0;
       for (TopExp_Explorer ex(solid, TopAbs_FACE); ex.More(); ex.Next()) ++rep.faces;
+      std::vector<TopoDS_Shape> parts;
+      for (TopExp_Explorer ex(solid, TopAbs_SOLID); ex.More(); ex.Next()) parts.push_back(ex.Current());
+      // solids that touch (along the axis of a revolve, say) make one connected set
+      const int solids = separate_parts(parts, tol);
       set_centroid_and_box(rep, checks.centroid, checks.box);
-      rep.tol_achieved = std::max(fit_err, max_tolerance(solid));
+      rep.tol_achieved = std::max(fit_err, measured_geometric_error(solid));
       rep.seconds["validation"] = rep.seconds.value("validation", 0.0) + since(t_val);
 
-      // Containment: every point of the moved entity belongs to the swept set, so sampled points
-      // M(q) x (x on the entity, q in the joint box) must lie in the solid: all of them within its
-      // box, and for chains (whose stages are arranged again and again) a few classified against it
-      // (on fitted faces a classification costs tens of milliseconds, too much for one joint's
-      // budget). This catches a solid that lost part of the set, which the two volumes computed from
-      // the solid itself cannot see.
-      const auto t_cont = Clock::now();
-      std::string missing;
-      {
-        std::vector<Eigen::Vector3d> local;  // points of the entity in its own frame, placed
-        std::mt19937_64 rng(20261123);
-        std::uniform_real_distribution<double> uni(0.0, 1.0);
-        if (pe) {
-          std::vector<double> s(pe->num_params());
-          for (int k = 0; k < 256; ++k) {
-            for (std::size_t i = 0; i < s.size(); ++i) s[i] = pe->lo(i) + (pe->hi(i) - pe->lo(i)) * uni(rng);
-            local.push_back(pe->eval(s.data()));
-          }
-        } else {
-          // (the entity's shape, read or built once above: only parametric kinds are rebuilt)
-          for (TopExp_Explorer ex(raw, TopAbs_VERTEX); ex.More(); ex.Next())
-            local.push_back(to_eigen(BRep_Tool::Pnt(TopoDS::Vertex(ex.Current()))));
-          for (TopExp_Explorer ex(raw, TopAbs_EDGE); ex.More(); ex.Next()) {
-            const TopoDS_Edge& e = TopoDS::Edge(ex.Current());
-            if (BRep_Tool::Degenerated(e)) continue;
-            BRepAdaptor_Curve c(e);
-            for (int k = 1; k < 4; ++k)
-              local.push_back(to_eigen(c.Value(c.FirstParameter() + (c.LastParameter() - c.FirstParameter()) * k / 4)));
-          }
-        }
-        const double ctol = 10 * std::max({rep.tol_achieved, tol, 1e-9 * size});
-        Bnd_Box box;
-        box.Update(rep.bbox_min[0], rep.bbox_min[1], rep.bbox_min[2], rep.bbox_max[0], rep.bbox_max[1], rep.bbox_max[2]);
-        box.Enlarge(ctol);
-        std::vector<double> q(motion.dof());
-        std::vector<gp_Pnt> probes;
-        for (int k = 0; k < 1024 && !local.empty() && missing.empty(); ++k) {
-          for (std::size_t i = 0; i < q.size(); ++i) {
-            const auto& jj = motion.joints[i];
-            const double hi = jj.type == JointType::Revolute ? std::min(jj.hi, jj.lo + 2 * M_PI) : jj.hi;
-            q[i] = jj.lo + (hi - jj.lo) * uni(rng);
-          }
-          const gp_Pnt x = to_pnt(motion.transform(q) * local[k % local.size()]);
-          if (box.IsOut(x)) missing = "a point of the moved entity lies outside the solid's box";
-          else if (k % 64 == 0 && motion.dof() > 1) probes.push_back(x);
-        }
-        for (const gp_Pnt& x : probes) {
-          if (!missing.empty()) break;
-          bool inside = false;
-          for (TopExp_Explorer ex(solid, TopAbs_SOLID); ex.More() && !inside; ex.Next()) {
-            BRepClass3d_SolidClassifier cls(ex.Current(), x, ctol);
-            inside = cls.State() != TopAbs_OUT;
-          }
-          if (!inside) {
-            std::ostringstream at;
-            at.precision(9);
-            at << "a point of the moved entity, (" << x.X() << ", " << x.Y() << ", " << x.Z() << "), lies outside the solid";
-            missing = at.str();
-          }
-        }
-      }
-      rep.seconds["containment"] = rep.seconds.value("containment", 0.0) + since(t_cont);
+      std::string why;
+      if (!rep.valid) why = invalid;
+      else if (!rep.closed) why = "the solid is not closed";
+      else if (rep.volume_brep <= 0) why = "the solid has no volume";
+      else if (solids > 1)
+        why = "the result has " + std::to_string(solids) +
+              " separate solids (that do not touch), where a connected entity under a continuous motion sweeps one connected set";
+      else if (rep.tol_achieved > tol)
+        why = "the geometric error of the solid (" + std::to_string(rep.tol_achieved) +
+              ", its largest fitting error or gap between its curves, surfaces and vertices) exceeds the requested tolerance (" + std::to_string(tol) + ")";
+      else if (std::abs(rep.volume_brep - rep.volume_divergence) >
+               tol * size * size + opt.settings.volume_relative_band * size * size * size)
+        why = "B-rep and divergence volumes disagree (" + std::to_string(rep.volume_brep) + " vs " +
+              std::to_string(rep.volume_divergence) + ")";
 
-      if (!rep.valid) return invalid;
-      if (!rep.closed) return "the solid is not closed";
-      if (rep.volume_brep <= 0) return "the solid has no volume";
-      if (!missing.empty()) return missing + ": part of the swept set is missing";
-      if (!checks.agree(std::max(rep.tol_achieved, tol)))
-        return "B-rep and divergence volumes disagree (" + std::to_string(rep.volume_brep) + " vs " +
-               std::to_string(rep.volume_divergence) + ")";
-      return "";
+      // The verdict, for every closed, valid solid.
+      if (!rep.valid || !rep.closed) return why;
+      const auto t_verdict = Clock::now();
+      if (!independent) {
+        rep.has_verdict = false;
+        return why.empty() ? "no membership test independent of the solid exists for a " +
+                                 std::string(to_string(spec.entity.kind)) + " entity under " + std::to_string(n) +
+                                 " joints: the solid cannot be checked"
+                           : why;
+      }
+      const VerdictResult v = judge_solid(solid, true_box, independent, tol, size, opt.settings);
+      rep.has_verdict = true;
+      rep.verdict_samples = v.samples;
+      rep.verdict_near_boundary = v.near_boundary;
+      rep.verdict_mismatches = v.mismatches;
+      rep.verdict_probes = v.probes;
+      rep.verdict_probe_mismatches = v.probe_mismatches;
+      rep.verdict_undecided = v.undecided;
+      rep.verdict_probe_undecided = v.probe_undecided;
+      rep.verdict_probe_offset = v.probe_offset_max;
+      rep.verdict_difference_bound = v.difference_bound;
+      rep.verdict_box_volume = v.box_volume;
+      rep.seconds["verdict"] = rep.seconds.value("verdict", 0.0) + since(t_verdict);
+      if (why.empty() && !v.decided())
+        why = "the independent membership test could not decide " + std::to_string(v.undecided) + " of " +
+              std::to_string(v.samples) + " samples within its budget: the solid cannot be checked";
+      else if (why.empty() && !v.ok())
+        why = "the solid disagrees with the independent membership test at " +
+              std::to_string(v.mismatches + v.probe_mismatches) + " of " + std::to_string(v.samples + 2 * v.probes) +
+              " points; " + v.first_mismatch;
+      return why;
     };
     std::string why = check_result(result);
     if (why == invalid) {
@@ -1465,10 +1618,10 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
       Motion m = motion;
       for (auto& jj : m.joints)
         if (jj.type == JointType::Revolute && jj.hi - jj.lo > 2 * M_PI) jj.hi = jj.lo + 2 * M_PI;
-      const std::size_t chain_samples = std::max<std::size_t>(opt.mc_samples / 8, 20000);
+      const std::size_t chain_samples = std::max<std::size_t>(opt.settings.mc_samples / 8, 20000);
       if (sd) {
         mc = monte_carlo_volume([&](const Eigen::Vector3d& x) { return in_swept_set(*sd, m, x, 1e-9 * size); }, box,
-                                n == 1 ? opt.mc_samples : chain_samples, opt.mc_seed);
+                                n == 1 ? opt.settings.mc_samples : chain_samples, opt.settings.seed);
       } else if (n == 1) {
         const ScrewJoint& j = motion.joints[0];
         const double T = std::min(j.hi - j.lo, j.type == JointType::Revolute ? 2 * M_PI : 1e300);
@@ -1476,7 +1629,7 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
         TrajectoryMembership by_trajectory(body, rep.dimension == 3 && spec.entity.dimension() == 3, j, T, 1e-9 * size);
         mc = monte_carlo_volume(
             [&](const Eigen::Vector3d& x) { return by_trajectory(x); },
-            box, std::min<std::size_t>(opt.mc_samples, 20000), opt.mc_seed);
+            box, std::min<std::size_t>(opt.settings.mc_samples, 20000), opt.settings.seed);
       } else if (pe) {
         // Here the independent membership is a search over the joint and entity parameters, far
         // slower than classifying a point against the solid: each sample is classified against
@@ -1487,7 +1640,7 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
           return in_result.State() == TopAbs_IN;
         };
         mc = monte_carlo_volume([&](const Eigen::Vector3d& x) { return in_swept_image(*pe, m, x, 1e-9 * size, size); },
-                                box, chain_samples, opt.mc_seed, in_solid);
+                                box, chain_samples, opt.settings.seed, in_solid);
         rep.mc_compared = true;
       } else {
         throw ComputeError("--verify needs a primitive solid, a point, a curve or a surface entity for motions of "
@@ -1503,7 +1656,7 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
     }
 
     // Verdict.
-    const double vtol = volume_band(std::max(rep.tol_achieved, tol), rep.area, rep.volume_brep);
+    const double vtol = tol * size * size + opt.settings.volume_relative_band * size * size * size;
     if (why.empty() && rep.has_mc && std::abs(rep.volume_brep - rep.volume_mc) > 4.5 * rep.volume_mc_stderr + vtol)
       why = "B-rep and Monte Carlo volumes disagree (" + std::to_string(rep.volume_brep) + " vs " +
             std::to_string(rep.volume_mc) + " +- " + std::to_string(rep.volume_mc_stderr) + ")";

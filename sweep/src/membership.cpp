@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <queue>
 #include <random>
 #include <vector>
 
@@ -110,6 +111,11 @@ std::unique_ptr<SignedDistance> make_signed_distance(const EntitySpec& e) {
 
 bool in_swept_set(const SignedDistance& sd, const Motion& motion, const Vector3d& x,
                   double resolution) {
+  return swept_set_membership(sd, motion, x, resolution, 500000) == 1;
+}
+
+int swept_set_membership(const SignedDistance& sd, const Motion& motion, const Vector3d& x, double resolution,
+                         std::size_t budget) {
   const std::size_t n = motion.dof();
   SWEEP_ASSERT(n >= 1, "motion without joints");
   // Branch and bound over the joint box. For a sub-box with half-widths w_i around centre c, the
@@ -123,31 +129,46 @@ bool in_swept_set(const SignedDistance& sd, const Motion& motion, const Vector3d
     const auto& j = motion.joints[i];
     speed[i] = j.is_rotation() ? lever + std::abs(j.pitch) + j.point.norm() : 1.0;
   }
-  std::vector<SearchBox> stack;
-  SearchBox root;
-  for (const auto& j : motion.joints) { root.lo.push_back(j.lo); root.hi.push_back(j.hi); }
-  stack.push_back(root);
+  // Best first: the sub-box whose lower bound of the distance (d at the centre minus the move) is
+  // smallest is split next, so a point inside is found along the way to the distance's minimum.
+  struct Open {
+    double bound;
+    std::size_t split;
+    SearchBox box;
+    bool operator<(const Open& o) const { return bound > o.bound; }
+  };
+  std::priority_queue<Open> open;
   std::vector<double> c(n);
-  std::size_t iterations = 0;
-  while (!stack.empty()) {
-    SearchBox b = std::move(stack.back());
-    stack.pop_back();
+  // 1: x is in, 0: the sub-box may hold it (pushed), -1: discarded
+  auto visit = [&](SearchBox b) -> int {
     double move = 0.0, widest = -1.0;
     std::size_t split = 0;
     for (std::size_t i = 0; i < n; ++i) {
       c[i] = 0.5 * (b.lo[i] + b.hi[i]);
-      double m = speed[i] * 0.5 * (b.hi[i] - b.lo[i]);
+      const double m = speed[i] * 0.5 * (b.hi[i] - b.lo[i]);
       move += m;
       if (m > widest) { widest = m; split = i; }
     }
-    const Vector3d y = motion.transform(c).inverse() * x;
-    const double d = sd(y);
-    if (d <= 0.0) return true;
-    if (d > move) continue;
-    if (move < resolution || ++iterations > 2000000) continue;  // within resolution of the boundary: outside
-    push_halves(stack, std::move(b), split);
+    const double d = sd(motion.transform(c).inverse() * x);
+    if (d <= 0.0) return 1;
+    if (d > move || move < resolution) return -1;  // out, or within resolution of the boundary: out
+    open.push({d - move, split, std::move(b)});
+    return 0;
+  };
+  SearchBox root;
+  for (const auto& j : motion.joints) { root.lo.push_back(j.lo); root.hi.push_back(j.hi); }
+  if (visit(root) == 1) return 1;
+  for (std::size_t iterations = 0; !open.empty(); ++iterations) {
+    if (iterations >= budget) return -1;
+    Open top = open.top();
+    open.pop();
+    SearchBox half = top.box;
+    const double mid = 0.5 * (top.box.lo[top.split] + top.box.hi[top.split]);
+    top.box.hi[top.split] = mid;
+    half.lo[top.split] = mid;
+    if (visit(std::move(top.box)) == 1 || visit(std::move(half)) == 1) return 1;
   }
-  return false;
+  return 0;
 }
 
 std::unique_ptr<ParametricEntity> ParametricEntity::make(const EntitySpec& e) {

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "sweep/settings.hpp"
 #include "sweep/spec.hpp"
 
 namespace sweep::occt {
@@ -35,11 +36,13 @@ struct Variety {
   nlohmann::json to_json() const;
 };
 
-/// Settings with their defaults.
+/// What a run does beyond the spec.
 struct RunOptions {
   bool verify = false;                 ///< add the Monte Carlo volume (--verify)
-  std::size_t mc_samples = 400000;     ///< Monte Carlo sample count
-  std::uint64_t mc_seed = 20261123;    ///< fixed, so runs are deterministic
+  /// Build the shapes that have a direct construction (balls under screws, graph extrusions)
+  /// directly; off, they go through the general pipeline like every other shape.
+  bool direct_builds = true;
+  Settings settings;                   ///< tolerances and sampling
   /// Called with a short line at each step of a long run (the CLI prints it on a terminal).
   std::function<void(const std::string&)> progress;
   /// When set, receives every boundary variety of every stage.
@@ -78,6 +81,15 @@ struct Report {
   /// (stage, faces): candidate faces that pruning had dropped, restored because the boundary
   /// pieces of the arrangement without them left free edges on them
   std::vector<std::pair<int, int>> restored_candidates;
+  /// The verdict (SPEC.md `verify`): points in a box that holds the true swept set and points just
+  /// off the solid's faces, classified against the solid and by a membership test that does not
+  /// use it.
+  bool has_verdict = false;
+  std::size_t verdict_samples = 0, verdict_near_boundary = 0, verdict_mismatches = 0, verdict_probes = 0,
+              verdict_probe_mismatches = 0, verdict_undecided = 0, verdict_probe_undecided = 0;
+  double verdict_difference_bound = 0, verdict_box_volume = 0;
+  double verdict_probe_offset = 0;  ///< the largest offset off the boundary at which a probe was decided
+  std::string verdict_membership;  ///< which membership test judged
   double tol_requested = 0, tol_achieved = 0;
   double seconds_total = 0;
   nlohmann::json seconds = nlohmann::json::object();

@@ -32,6 +32,11 @@ std::unique_ptr<SignedDistance> make_signed_distance(const EntitySpec& entity);
 bool in_swept_set(const SignedDistance& sd, const Motion& motion, const Eigen::Vector3d& x,
                   double resolution);
 
+/// The same search with at most `budget` sub-boxes split: 1 when x is in the swept set, 0 when it
+/// is out (or within `resolution` of the boundary), -1 when the budget ran out first.
+int swept_set_membership(const SignedDistance& sd, const Motion& motion, const Eigen::Vector3d& x,
+                         double resolution, std::size_t budget);
+
 /// A point, curve or surface given by its parametric map Gamma(s) over a box of s (0, 1 or 2
 /// parameters), with its placement applied.
 class ParametricEntity {

@@ -19,6 +19,11 @@ struct Settings {
   /// rounding), plus tol times the model's surface scale (size^2).
   double volume_relative_band = 1e-9;
 
+  // --- building a stage's solid from its sweep boundary
+  /// How far off a piece of the candidate boundary its two sides are tested (x size), and again at
+  /// twice that; a piece is kept when exactly one side is in the swept set.
+  double classify_offset = 2e-6;
+
   // --- the verdict: the solid against a membership test that does not use it
   /// Points sampled uniformly in the box that holds the swept set.
   std::size_t verdict_samples = 4096;
@@ -31,6 +36,12 @@ struct Settings {
   /// within three deflections plus the tolerance of the triangulated boundary are left out (the
   /// probes test that band).
   double verdict_deflection = 2e-3;
+  /// Sub-boxes a joint-space search may split for one verdict point (chains); a point it cannot
+  /// decide is left out and counted as undecided.
+  std::size_t membership_budget = 20000;
+  /// The largest fraction of the verdict's samples that may be undecided (undecided probes are
+  /// reported only).
+  double undecided_fraction = 0.1;
   /// One-sided confidence of the bound on the volume of the symmetric difference.
   double confidence = 0.95;
   /// Seed of every sampler (runs are deterministic).

@@ -1,0 +1,109 @@
+// The verdict on solids known to be wrong: each must fail against the independent membership.
+#include <BRepAlgoAPI_Cut.hxx>
+#include <BRepAlgoAPI_Fuse.hxx>
+#include <BRepPrimAPI_MakeBox.hxx>
+#include <BRepPrimAPI_MakeCylinder.hxx>
+#include <gp_Ax1.hxx>
+#include <gp_Ax2.hxx>
+
+#include <catch2/catch.hpp>
+
+#include "sweep/orbit.hpp"
+#include "sweep/settings.hpp"
+#include "sweep/spec.hpp"
+#include "verdict.hpp"
+
+using namespace sweep;
+using namespace sweep::occt;
+
+namespace {
+
+/// The membership of the unit box [0,1]^3 turned a quarter turn about the z axis, from its orbit
+/// intervals (independent of any solid).
+MemberTestMaker box_quarter_turn_membership() {
+  EntitySpec box;
+  box.kind = EntityKind::Box;
+  box.min = Eigen::Vector3d(0, 0, 0);
+  box.max = Eigen::Vector3d(1, 1, 1);
+  const OrbitSolidPtr body = make_orbit_solid(box);
+  ScrewJoint j;
+  j.type = JointType::Revolute;
+  j.point = Eigen::Vector3d::Zero();
+  j.direction = Eigen::Vector3d::UnitZ();
+  j.lo = 0;
+  j.hi = M_PI / 2;
+  return always_decided([body, j]() -> PointTest {
+    return [body, j](const Eigen::Vector3d& x) { return in_joint_sweep(*body, j, M_PI / 2, x); };
+  });
+}
+
+/// The right solid, built independently of the engine: at radius r <= 1 the square covers a
+/// quarter turn, so the sweep a half turn (a half disk); beyond, the box at both ends and the
+/// sector between 45 and 135 degrees of radius sqrt 2 that its far corner sweeps.
+TopoDS_Shape box_quarter_turn_solid() {
+  const TopoDS_Shape b0 = BRepPrimAPI_MakeBox(1, 1, 1).Shape();
+  const TopoDS_Shape b1 = BRepPrimAPI_MakeBox(gp_Pnt(-1, 0, 0), 1, 1, 1).Shape();
+  const TopoDS_Shape half_disk =
+      BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1), gp_Dir(1, 0, 0)), 1, 1, M_PI).Shape();
+  const TopoDS_Shape sector = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1), gp_Dir(1, 1, 0)),
+                                                       std::sqrt(2.0), 1, M_PI / 2)
+                                  .Shape();
+  return BRepAlgoAPI_Fuse(BRepAlgoAPI_Fuse(BRepAlgoAPI_Fuse(b0, b1).Shape(), half_disk).Shape(), sector).Shape();
+}
+
+const Eigen::AlignedBox3d kTrueBox(Eigen::Vector3d(-1.5, -0.1, -0.1), Eigen::Vector3d(1.1, 1.5, 1.1));
+
+VerdictResult judge(const TopoDS_Shape& s) {
+  Settings settings;
+  const double size = 2.0, tol = 1e-6 * size;
+  return judge_solid(s, kTrueBox, box_quarter_turn_membership(), tol, size, settings);
+}
+
+}  // namespace
+
+TEST_CASE("Verdict: the right solid of a box's quarter turn passes", "[verdict]") {
+  const VerdictResult v = judge(box_quarter_turn_solid());
+  INFO("mismatches " << v.mismatches << " probe mismatches " << v.probe_mismatches << ": " << v.first_mismatch);
+  CHECK(v.ok());
+  CHECK(v.samples == Settings().verdict_samples);
+  CHECK(v.probes > Settings().verdict_probes / 2);
+  // the difference bound: the untested band only (pi + 1 is the volume)
+  CHECK(v.difference_bound < 0.1 * (M_PI + 1));
+}
+
+TEST_CASE("Verdict: a solid with a sector removed fails", "[verdict]") {
+  // a 10 degree wedge cut out of the middle of the sweep
+  const TopoDS_Shape wedge = BRepPrimAPI_MakeCylinder(
+                                 gp_Ax2(gp_Pnt(0, 0, -1), gp_Dir(0, 0, 1), gp_Dir(std::cos(0.7), std::sin(0.7), 0)), 3, 3,
+                                 10 * M_PI / 180)
+                                 .Shape();
+  const VerdictResult v = judge(BRepAlgoAPI_Cut(box_quarter_turn_solid(), wedge).Shape());
+  CHECK_FALSE(v.ok());
+  CHECK(v.mismatches > 0);
+}
+
+TEST_CASE("Verdict: a solid with an extra cell fails", "[verdict]") {
+  // a small box beside the sweep, inside the true box but outside the swept set
+  const TopoDS_Shape extra = BRepPrimAPI_MakeBox(gp_Pnt(0.5, -0.09, 0.2), 0.5, 0.08, 0.5).Shape();
+  const VerdictResult v = judge(BRepAlgoAPI_Fuse(box_quarter_turn_solid(), extra).Shape());
+  CHECK_FALSE(v.ok());
+}
+
+TEST_CASE("Verdict: a face moved by ten tolerances fails", "[verdict]") {
+  // the top of the half disk at z = 1 + 10 tol: the volume is off by 1e-5 of pi + 1 only, and
+  // no volume sample is likely to fall in the slab; the probes see it
+  const double tol = 2e-6;
+  const TopoDS_Shape right = box_quarter_turn_solid();
+  const TopoDS_Shape slab =
+      BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, 1), gp_Dir(0, 0, 1), gp_Dir(1, 0, 0)), 1.0, 10 * tol, M_PI).Shape();
+  const VerdictResult v = judge(BRepAlgoAPI_Fuse(right, slab).Shape());
+  CHECK_FALSE(v.ok());
+  CHECK(v.probe_mismatches > 0);
+}
+
+TEST_CASE("Verdict: the bound on the symmetric difference follows Wilson's interval", "[verdict]") {
+  // no failure in n: the bound is about z^2 / n for large n; k of n: above k / n
+  CHECK(proportion_upper_bound(0, 4096, 0.95) == Approx(2.7055 / (4096 + 2.7055)).epsilon(0.01));
+  CHECK(proportion_upper_bound(40, 4096, 0.95) > 40.0 / 4096);
+  CHECK(proportion_upper_bound(40, 4096, 0.95) < 1.6 * 40.0 / 4096);
+}

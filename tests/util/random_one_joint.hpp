@@ -1,0 +1,104 @@
+#pragma once
+// A seeded generator of one-joint sweeps of primitives (box, sphere, cylinder, cone, torus) about
+// axes through, beside and away from the entity, oblique or not, for revolute ranges up to 720
+// degrees, prismatic strokes and helical pitches from overlapping to far-apart turns. Each case is
+// a spec text (degrees), so it goes through the parser as a user's file does.
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <string>
+
+namespace sweep::testing {
+
+struct RandomCase {
+  std::string name;  ///< kind, joint type and index
+  std::string spec;  ///< the spec's JSON
+};
+
+inline RandomCase random_one_joint_case(std::uint64_t seed, int index) {
+  std::mt19937_64 rng(seed * 1000003ULL + std::uint64_t(index));
+  std::uniform_real_distribution<double> uni(0.0, 1.0);
+  auto in = [&](double a, double b) { return a + (b - a) * uni(rng); };
+  auto vec = [&](double s) {
+    char b[96];
+    std::snprintf(b, sizeof b, "[%.6f, %.6f, %.6f]", in(-s, s), in(-s, s), in(-s, s));
+    return std::string(b);
+  };
+  auto num = [](double v) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%.6f", v);
+    return std::string(b);
+  };
+  auto unit = [&]() {
+    for (;;) {
+      const double x = in(-1, 1), y = in(-1, 1), z = in(-1, 1), n = std::sqrt(x * x + y * y + z * z);
+      if (n > 0.2 && n <= 1) {
+        char b[96];
+        std::snprintf(b, sizeof b, "[%.6f, %.6f, %.6f]", x / n, y / n, z / n);
+        return std::string(b);
+      }
+    }
+  };
+  static const char* kinds[] = {"box", "sphere", "cylinder", "cone", "torus"};
+  const std::string kind = kinds[index % 5];
+  std::string entity;
+  if (kind == "box") {
+    const double x = in(-1, 0.5), y = in(-1, 0.5), z = in(-1, 0.5);
+    entity = "{\"kind\": \"box\", \"min\": [" + num(x) + ", " + num(y) + ", " + num(z) + "], \"max\": [" +
+             num(x + in(0.3, 1.5)) + ", " + num(y + in(0.3, 1.5)) + ", " + num(z + in(0.3, 1.5)) + "]}";
+  } else if (kind == "sphere") {
+    entity = "{\"kind\": \"sphere\", \"center\": " + vec(1) + ", \"radius\": " + num(in(0.3, 1.2)) + "}";
+  } else if (kind == "cylinder") {
+    entity = "{\"kind\": \"cylinder\", \"base\": " + vec(1) + ", \"axis\": " + unit() +
+             ", \"radius\": " + num(in(0.2, 0.8)) + ", \"height\": " + num(in(0.5, 2)) + "}";
+  } else if (kind == "cone") {
+    const bool pointed = uni(rng) < 0.3;
+    entity = "{\"kind\": \"cone\", \"base\": " + vec(1) + ", \"axis\": " + unit() + ", \"radius1\": " + num(in(0.3, 0.9)) +
+             ", \"radius2\": " + num(pointed ? 0.0 : in(0.1, 0.6)) + ", \"height\": " + num(in(0.5, 2)) + "}";
+  } else {
+    const double minor = in(0.15, 0.5);
+    entity = "{\"kind\": \"torus\", \"center\": " + vec(1) + ", \"axis\": " + unit() +
+             ", \"major\": " + num(minor + in(0.3, 1.2)) + ", \"minor\": " + num(minor) + "}";
+  }
+  // the axis: through the entity's region, beside it or away from it
+  const double reach = uni(rng) < 0.4 ? 0.5 : (uni(rng) < 0.5 ? 1.5 : 3.0);
+  const std::string point = vec(reach);
+  const std::string direction = uni(rng) < 0.3 ? "[0, 0, 1]" : unit();
+  static const char* types[] = {"revolute", "prismatic", "helical"};
+  const std::string type = types[(index / 5) % 3];
+  std::string joint = "{\"type\": \"" + type + "\", \"point\": " + point + ", \"direction\": " + direction;
+  if (type == "revolute") {
+    const double deg = uni(rng) < 0.1 ? 720.0 : in(20, 340);
+    joint += ", \"range\": [0, " + num(deg) + "]}";
+  } else if (type == "prismatic") {
+    joint += ", \"range\": [0, " + num(in(0.3, 3)) + "]}";
+  } else {
+    const double turns = in(0.25, 3);
+    const double pitch = uni(rng) < 0.5 ? in(0.3, 1.5) : in(2, 5);  // overlapping or apart
+    joint += ", \"pitch\": " + num(pitch) + ", \"range\": [0, " + num(360 * turns) + "]}";
+  }
+  RandomCase c;
+  c.name = kind + "_" + type + "_" + std::to_string(index);
+  c.spec = "{\"sweep\": 1, \"name\": \"" + c.name + "\", \"angles\": \"deg\", \"entity\": " + entity +
+           ", \"motion\": {\"kind\": \"axes\", \"joints\": [" + joint + "]}}";
+  return c;
+}
+
+}  // namespace sweep::testing
+
+#include "sweep/orbit.hpp"
+#include "sweep/spec.hpp"
+
+namespace sweep::testing {
+
+/// The volume of a one-joint sweep of a primitive, integrated over orbit space from the entity's
+/// orbit intervals (sweep/orbit.hpp): it never looks at a B-rep. *err: its error estimate.
+inline double reference_volume(const Spec& spec, double rel_tol, double* err) {
+  const Motion& m = spec.motion.motion;
+  ScrewJoint j = m.joints.at(0);
+  const double T = std::min(j.hi - j.lo, j.type == JointType::Revolute ? 2 * M_PI : 1e300);
+  const OrbitSolidPtr body = orbit_placed(make_orbit_solid(spec.entity), j.transform(j.lo) * m.home);
+  return joint_sweep_volume(*body, j, T, rel_tol, err);
+}
+
+}  // namespace sweep::testing
