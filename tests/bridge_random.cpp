@@ -10,7 +10,7 @@
 
 using namespace sweep;
 
-TEST_CASE("Random one-joint sweeps: no wrong solid is reported ok, and ok ones are right", "[random][slow]") {
+TEST_CASE("Random one-joint sweeps: no wrong solid is reported ok, and ok ones are right", "[random][bench]") {
   // revolute and prismatic cases (the generator's helical ones, every third group of five, take
   // the orbit-space reference minutes each: bench/ runs them)
   const int count = 40;
