@@ -256,14 +256,7 @@ BoundarySweep boundary_sweep(const TopoDS_Shape& body, const ScrewJoint& j, doub
   const bool full_turn = j.type == JointType::Revolute && T >= 2 * M_PI - 1e-12;
   const std::string qn = "q" + std::to_string(joint_no);
   auto variety = [&](const std::string& type, const std::string& what, nlohmann::json fixed, nlohmann::json free) {
-    Variety v;
-    v.stage = stage;
-    v.joint = joint_no;
-    v.type = type;
-    v.what = what;
-    v.fixed = std::move(fixed);
-    v.free = std::move(free);
-    out.varieties.push_back(std::move(v));
+    out.varieties.push_back({stage, joint_no, type, what, std::move(fixed), std::move(free)});
     return int(out.varieties.size()) - 1;
   };
   const nlohmann::json qfree = {{qn, {0.0, T}}};

@@ -415,6 +415,23 @@ TopoDS_Shape direct_ball_screw(const TopoDS_Shape& body, const ScrewJoint& j, do
   return valid_and_closed(direct) ? direct : TopoDS_Shape();
 }
 
+/// Membership in the sweep of a primitive (at its start pose) by joint j over [0, T], from its
+/// orbit intervals: one test per thread.
+PointTestMaker orbit_membership(const OrbitSolidPtr& start, const ScrewJoint& j, double T) {
+  return [start, j, T]() -> PointTest {
+    return [start, j, T](const Eigen::Vector3d& x) { return in_joint_sweep(*start, j, T, x); };
+  };
+}
+
+/// Membership in the sweep of a solid (at its start pose) by joint j over [0, T], from each
+/// point's trajectory against the solid's faces: one test per thread.
+PointTestMaker trajectory_membership(const TopoDS_Shape& body, const ScrewJoint& j, double T, double ttol) {
+  return [body, j, T, ttol]() -> PointTest {
+    auto test = std::make_shared<TrajectoryMembership>(body, true, j, T, ttol);
+    return [test](const Eigen::Vector3d& x) { return (*test)(x); };
+  };
+}
+
 /// One stage: the solid swept by `body` (a solid, or faces when dim == 2) under joint j for
 /// q in [0, T]. `sd`, when given, is the entity's signed distance, or `pe` its parametric map, and
 /// `sd_motion` the motion that carries the entity to this stage's swept set (for the membership
@@ -433,14 +450,7 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
   cand.varieties += 2;
   const std::string qn = "q" + std::to_string(joint_no);
   auto variety = [&](const std::string& type, const std::string& what, nlohmann::json fixed, nlohmann::json free) {
-    Variety v;
-    v.stage = stage;
-    v.joint = joint_no;
-    v.type = type;
-    v.what = what;
-    v.fixed = std::move(fixed);
-    v.free = std::move(free);
-    return cand.add_variety(std::move(v));
+    return cand.add_variety({stage, joint_no, type, what, std::move(fixed), std::move(free)});
   };
   const nlohmann::json qfree = {{qn, {0.0, T}}};
   // the entity at the start or at the end of the joint's range
@@ -457,22 +467,20 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
     std::vector<TopoDS_Face> fs;
     std::vector<int> roles;
     const TopoDS_Shape direct = direct_ball_screw(body, j, T, fit_tol, size, tol, &err, &fs, &roles);
-    {
-      if (!direct.IsNull()) {
-        fit_err = err;
-        const int tube = variety("interior", "grazing curve (n . v = 0) on entity face 1 swept by joint " +
-                                                 std::to_string(joint_no) + " (a tube about the centre's helix)",
-                                 nlohmann::json::object(), qfree);
-        const int lo_id = limit_variety(false), hi_id = limit_variety(true);
-        cand.varieties += 1;
-        for (std::size_t k = 0; k < fs.size(); ++k)
-          cand.add(roles[k] == 0 ? tube : roles[k] == 1 ? lo_id : hi_id, {fs[k]}, true);
-        rep.varieties += cand.varieties;
-        rep.cells += 1;
-        sec["varieties"] += since(t_cand);
-        if (cand_out) *cand_out = std::move(cand);
-        return direct;
-      }
+    if (!direct.IsNull()) {
+      fit_err = err;
+      const int tube = variety("interior", "grazing curve (n . v = 0) on entity face 1 swept by joint " +
+                                               std::to_string(joint_no) + " (a tube about the centre's helix)",
+                               nlohmann::json::object(), qfree);
+      const int lo_id = limit_variety(false), hi_id = limit_variety(true);
+      cand.varieties += 1;
+      for (std::size_t k = 0; k < fs.size(); ++k)
+        cand.add(roles[k] == 0 ? tube : roles[k] == 1 ? lo_id : hi_id, {fs[k]}, true);
+      rep.varieties += cand.varieties;
+      rep.cells += 1;
+      sec["varieties"] += since(t_cand);
+      if (cand_out) *cand_out = std::move(cand);
+      return direct;
     }
   }
   // A face translated along a direction in which it is a graph: the face, its translate and the
@@ -1221,12 +1229,12 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
       // The sweep-boundary engine builds the entity's own stage (a solid); later stages of chains,
       // and a stage it cannot build, go through the arrangement of cells.
       bool built = dim <= 1;
+      Candidates stage_cands;
       if (!built && dim == 3 && i == n - 1 && !std::getenv("SWEEP_CELLS_ENGINE")) {
         // A solid: built directly when it is a ball under a screw, else from its sweep boundary,
-        // whose pieces are classified by the entity's orbit intervals (a primitive's first stage)
-        // or by trajectories against the body's faces.
+        // whose pieces are classified by the entity's orbit intervals (a primitive) or by
+        // trajectories against the body's faces.
         const auto t_stage = Clock::now();
-        Candidates stage_cands;
         std::vector<TopoDS_Face> direct_faces;
         std::vector<int> roles;
         double err = fit_err;
@@ -1246,20 +1254,10 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
           shape = direct;
           built = true;
         } else {
-          PointTestMaker stage_member;
-          const OrbitSolidPtr orbit_entity = i == n - 1 ? make_orbit_solid(spec.entity) : nullptr;
-          if (orbit_entity) {
-            const OrbitSolidPtr start = orbit_placed(orbit_entity, j.transform(j.lo) * G);
-            stage_member = [start, j, T]() -> PointTest {
-              return [start, j, T](const Eigen::Vector3d& x) { return in_joint_sweep(*start, j, T, x); };
-            };
-          } else {
-            const double ttol = 1e-9 * size;
-            stage_member = [body, j, T, ttol]() -> PointTest {
-              auto test = std::make_shared<TrajectoryMembership>(body, true, j, T, ttol);
-              return [test](const Eigen::Vector3d& x) { return (*test)(x); };
-            };
-          }
+          const OrbitSolidPtr orbit_entity = make_orbit_solid(spec.entity);
+          const PointTestMaker stage_member =
+              orbit_entity ? orbit_membership(orbit_placed(orbit_entity, j.transform(j.lo) * G), j, T)
+                           : trajectory_membership(body, j, T, 1e-9 * size);
           BoundarySweep b = boundary_sweep(body, j, T, stage_member, size, tol, opt.settings, n - i, i + 1);
           for (auto it = b.seconds.begin(); it != b.seconds.end(); ++it)
             rep.seconds[it.key()] = rep.seconds.value(it.key(), 0.0) + it.value().get<double>();
@@ -1277,20 +1275,6 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
           }
         }
         rep.seconds["stages"] = rep.seconds.value("stages", 0.0) + since(t_stage);
-        if (!built) {
-          // the arrangement of cells below
-        } else if (i == 0) {
-          last_cands = std::move(stage_cands);
-        } else if (opt.varieties) {
-          stage_cands.compute_areas();
-          opt.varieties->insert(opt.varieties->end(), stage_cands.vars.begin(), stage_cands.vars.end());
-        }
-        TopExp_Explorer sx(shape, TopAbs_SOLID);
-        if (sx.More()) {
-          TopoDS_Shape first = sx.Current();
-          sx.Next();
-          if (!sx.More()) shape = first;
-        }
       }
       if (!built) {
         Motion sd_motion;
@@ -1312,7 +1296,6 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
           return solid_sweep(body, dim, j, T, use_sd ? sd.get() : nullptr, spe, sd_motion, esize, size, tol, fit_tol,
                              fit_err, rep, n - i, i + 1, out, prune, dropped);
         };
-        Candidates stage_cands;
         int dropped = 0;
         shape = sweep_stage(true, &dropped, &stage_cands);
         if (i > 0 && dropped > 0) {
@@ -1337,6 +1320,9 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
           }
         }
         if (i == 0 && dropped > 0) redo_last = [sweep_stage, &last_cands]() { return sweep_stage(false, nullptr, &last_cands); };
+      }
+      if (dim >= 2) {
+        // a solid stage, from either engine: its candidates go to the report
         if (i == 0) {
           last_cands = std::move(stage_cands);
         } else if (opt.varieties) {
@@ -1411,19 +1397,13 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
     const OrbitSolidPtr orbit_entity = make_orbit_solid(spec.entity);
     if (n == 1 && orbit_entity) {
       const ScrewJoint j = clipped.joints[0];
-      const OrbitSolidPtr start = orbit_placed(orbit_entity, j.transform(j.lo) * motion.home);
-      independent = always_decided([start, j]() -> PointTest {
-        return [start, j](const Eigen::Vector3d& x) { return in_joint_sweep(*start, j, j.hi - j.lo, x); };
-      });
+      independent =
+          always_decided(orbit_membership(orbit_placed(orbit_entity, j.transform(j.lo) * motion.home), j, j.hi - j.lo));
       rep.verdict_membership = "orbit intervals of the entity";
     } else if (n == 1 && spec.entity.dimension() == 3) {
       const ScrewJoint j = clipped.joints[0];
       const TopoDS_Shape body = moved(moved(raw, motion.home), j.transform(j.lo));
-      const double ttol = 1e-9 * size;
-      independent = always_decided([body, j, ttol]() -> PointTest {
-        auto test = std::make_shared<TrajectoryMembership>(body, true, j, j.hi - j.lo, ttol);
-        return [test](const Eigen::Vector3d& x) { return (*test)(x); };
-      });
+      independent = always_decided(trajectory_membership(body, j, j.hi - j.lo, 1e-9 * size));
       rep.verdict_membership = "trajectories against the entity's faces";
     } else if (sd) {
       const SignedDistance* sdp = sd.get();
