@@ -1416,9 +1416,12 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
       rep.verdict_membership = "certified search over the joint box (signed distance)";
     } else if (pe) {
       const ParametricEntity* pep = pe.get();
-      independent = always_decided([pep, clipped, size]() -> PointTest {
-        return [pep, clipped, size](const Eigen::Vector3d& x) { return in_swept_image(*pep, clipped, x, 1e-9 * size, size); };
-      });
+      const std::size_t budget = opt.settings.membership_budget;
+      independent = [pep, clipped, size, budget]() -> MemberTest {
+        return [pep, clipped, size, budget](const Eigen::Vector3d& x) {
+          return swept_image_membership(*pep, clipped, x, 1e-9 * size, size, budget);
+        };
+      };
       rep.verdict_membership = "certified search over the joint and entity parameters";
     }
     // The box that holds the true swept set: from the entity's box and the motion.
@@ -1466,8 +1469,9 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
         why = "B-rep and divergence volumes disagree (" + std::to_string(rep.volume_brep) + " vs " +
               std::to_string(rep.volume_divergence) + ")";
 
-      // The verdict, for every closed, valid solid.
-      if (!rep.valid || !rep.closed) return why;
+      // The verdict, for a solid that passed every check above (one that failed is not judged
+      // again: healing and rebuilding may call this more than once).
+      if (!why.empty()) return why;
       const auto t_verdict = Clock::now();
       if (!independent) {
         rep.has_verdict = false;

@@ -286,6 +286,11 @@ bool solve_image(const ParametricEntity& e, const Motion& motion, const Vector3d
 
 bool in_swept_image(const ParametricEntity& e, const Motion& motion, const Vector3d& x, double resolution,
                     double scale) {
+  return swept_image_membership(e, motion, x, resolution, scale, 200000) == 1;
+}
+
+int swept_image_membership(const ParametricEntity& e, const Motion& motion, const Vector3d& x, double resolution,
+                           double scale, std::size_t budget, bool undecided_past_budget) {
   const std::size_t n = motion.dof(), m = e.num_params(), k = n + m;
   SWEEP_ASSERT(n >= 1, "motion without joints");
   std::vector<double> lo(k), hi(k);
@@ -332,11 +337,15 @@ bool in_swept_image(const ParametricEntity& e, const Motion& motion, const Vecto
     }
     const double gap = (Q - x).norm();
     if (gap > move) continue;
-    if (gap < 0.5 * move && solve_image(e, motion, x, c, lo, hi, eps)) return true;
-    if (move < resolution || ++iterations > 200000) continue;
+    if (gap < 0.5 * move && solve_image(e, motion, x, c, lo, hi, eps)) return 1;
+    if (move < resolution) continue;
+    if (++iterations > budget) {
+      if (undecided_past_budget) return -1;
+      continue;
+    }
     push_halves(stack, std::move(b), split);
   }
-  return false;
+  return 0;
 }
 
 MonteCarloResult monte_carlo_volume(const std::function<bool(const Vector3d&)>& inside,

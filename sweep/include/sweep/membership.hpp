@@ -79,6 +79,12 @@ bool slides_along_itself(const EntitySpec& e, const Eigen::Isometry3d& G, const 
 bool in_swept_image(const ParametricEntity& entity, const Motion& motion, const Eigen::Vector3d& x,
                     double resolution, double scale);
 
+/// The same search splitting at most `budget` sub-boxes: 1 in, 0 out; past the budget, -1
+/// (undecided) when `undecided_past_budget`, else the sub-boxes left are counted as outside (what
+/// in_swept_image does, with a budget of 200000).
+int swept_image_membership(const ParametricEntity& entity, const Motion& motion, const Eigen::Vector3d& x,
+                           double resolution, double scale, std::size_t budget, bool undecided_past_budget = true);
+
 /// Monte Carlo estimate of a volume from a membership test inside an axis-aligned box. With
 /// `compare` (a second membership, e.g. a computed solid's), the samples where the two disagree
 /// are counted too: `mismatch_volume` estimates the volume of the symmetric difference.
