@@ -294,8 +294,25 @@ std::vector<TopoDS_Face> sphere_patch(const Handle(Geom_Circle)& c, double first
 
 }  // namespace
 
+namespace {
+/// How far the edge's pcurve on the face strays from the edge: along it (against the 3-D curve)
+/// and at its ends (against the vertices).
+double pcurve_gap(const TopoDS_Edge& e, const TopoDS_Face& face, const Handle(Geom_Surface)& surface) {
+  double dev = 0;
+  ShapeAnalysis_Edge().CheckSameParameter(e, face, dev, 23);
+  double f, l;
+  const Handle(Geom2d_Curve) pc = BRep_Tool::CurveOnSurface(e, face, f, l);
+  if (pc.IsNull()) return dev;
+  for (TopExp_Explorer vx(e, TopAbs_VERTEX); vx.More(); vx.Next()) {
+    const TopoDS_Vertex& v = TopoDS::Vertex(vx.Current());
+    const gp_Pnt2d uv = pc->Value(BRep_Tool::Parameter(v, e, face));
+    dev = std::max(dev, surface->Value(uv.X(), uv.Y()).Distance(BRep_Tool::Pnt(v)));
+  }
+  return dev;
+}
+}  // namespace
+
 void tighten_pcurves(const TopoDS_Face& face, double tol) {
-  ShapeAnalysis_Edge sae;
   BRep_Builder bb;
   TopLoc_Location loc;
   const Handle(Geom_Surface) surface = BRep_Tool::Surface(face, loc);
@@ -303,8 +320,7 @@ void tighten_pcurves(const TopoDS_Face& face, double tol) {
   for (TopExp_Explorer ex(face, TopAbs_EDGE); ex.More(); ex.Next()) {
     TopoDS_Edge e = TopoDS::Edge(ex.Current());
     if (BRep_Tool::Degenerated(e) || BRep_Tool::IsClosed(e, face)) continue;
-    double dev = 0;
-    sae.CheckSameParameter(e, face, dev, 23);
+    const double dev = pcurve_gap(e, face, surface);
     if (dev <= tol) continue;
     double f, l;
     TopLoc_Location cl;
@@ -313,11 +329,18 @@ void tighten_pcurves(const TopoDS_Face& face, double tol) {
     double achieved = tol;
     Handle(Geom2d_Curve) pc = GeomProjLib::Curve2d(c, f, l, surface, achieved);
     if (pc.IsNull()) continue;
-    const TopoDS_Edge saved = e;
-    bb.UpdateEdge(e, pc, face, BRep_Tool::Tolerance(e));
-    double dev2 = 0;
-    sae.CheckSameParameter(e, face, dev2, 23);
-    if (dev2 < dev) bb.UpdateEdge(e, std::max(1.5 * dev2, 1e-7));
+    double pf, pl;
+    const Handle(Geom2d_Curve) old = BRep_Tool::CurveOnSurface(e, face, pf, pl);
+    const double edge_tol = BRep_Tool::Tolerance(e);
+    bb.UpdateEdge(e, pc, face, edge_tol);
+    bb.Range(e, face, f, l);
+    const double dev2 = pcurve_gap(e, face, surface);
+    if (dev2 < dev) {
+      bb.UpdateEdge(e, std::max(1.5 * dev2, 1e-7));
+    } else {  // the projection is no better: the old pcurve stays
+      bb.UpdateEdge(e, old, face, edge_tol);
+      bb.Range(e, face, pf, pl);
+    }
   }
 }
 

@@ -436,11 +436,15 @@ PointTestMaker trajectory_membership(const TopoDS_Shape& body, const ScrewJoint&
 /// q in [0, T]. `sd`, when given, is the entity's signed distance, or `pe` its parametric map, and
 /// `sd_motion` the motion that carries the entity to this stage's swept set (for the membership
 /// test independent of the B-rep). With `prune`, candidate faces found inside the swept set at
-/// sampled points are left out of the arrangement; `dropped` receives how many.
+/// sampled points are left out of the arrangement; `pruned` receives how many of how many.
+struct PruneCount {
+  int candidates = 0;  ///< candidate faces before pruning
+  int dropped = 0;     ///< left out as internal (some may be restored later)
+};
 TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j, double T, const SignedDistance* sd,
                          const ParametricEntity* pe, const Motion& sd_motion, double esize, double size, double tol, double fit_tol,
                          double& fit_err, Report& rep, int stage, int joint_no, Candidates* cand_out, bool prune,
-                         int* dropped) {
+                         PruneCount* pruned) {
   Seconds sec{rep.seconds};
   auto stage_fail = [](const std::string& m) -> TopoDS_Shape { throw ComputeError(m); };
   const bool full_turn = j.type == JointType::Revolute && T >= 2 * M_PI - 1e-12;
@@ -750,7 +754,7 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
   // Sampling can miss a strip of boundary on a face that is internal almost everywhere (next to
   // where the envelope touches it tangentially): the caller checks the stage's solid and builds it
   // again without pruning when a check fails.
-  if (dropped) *dropped = 0;
+  if (pruned) *pruned = PruneCount{int(cand.faces.size()), 0};
   std::vector<TopoDS_Face> dropped_faces;
   std::vector<int> dropped_ids;
   if (prune) {
@@ -827,7 +831,7 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
       }
     }
     sec["pruning"] += since(t_prune);
-    if (dropped) *dropped = int(cand.faces.size() - keep.size());
+    if (pruned) pruned->dropped = int(cand.faces.size() - keep.size());
     cand.faces.swap(keep);
     cand.ids.swap(keep_ids);
   }
@@ -1287,18 +1291,22 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
         const ParametricEntity* spe = use_pe ? stage_pe.get() : nullptr;
         const int varieties_before = rep.varieties, cells_before = rep.cells;
         auto sweep_stage = [&, body, dim, j, T, spe, sd_motion, esize = extent(body), i, use_sd, varieties_before,
-                            cells_before](bool prune, int* dropped, Candidates* out) {
+                            cells_before](bool prune, PruneCount* pruned, Candidates* out) {
           rep.varieties = varieties_before;
           rep.cells = cells_before;
           auto& rc = rep.restored_candidates;
           rc.erase(std::remove_if(rc.begin(), rc.end(), [&](const auto& r) { return r.first == n - i; }), rc.end());
           *out = Candidates();
           return solid_sweep(body, dim, j, T, use_sd ? sd.get() : nullptr, spe, sd_motion, esize, size, tol, fit_tol,
-                             fit_err, rep, n - i, i + 1, out, prune, dropped);
+                             fit_err, rep, n - i, i + 1, out, prune, pruned);
         };
-        int dropped = 0;
-        shape = sweep_stage(true, &dropped, &stage_cands);
-        if (i > 0 && dropped > 0) {
+        PruneCount pruned;
+        shape = sweep_stage(true, &pruned, &stage_cands);
+        // Building the arrangement of every candidate again costs time that grows fast with their
+        // number; past the settings' limit a stage that fails its checks is not rebuilt.
+        const bool may_rebuild =
+            pruned.dropped > 0 && std::size_t(pruned.candidates) <= opt.settings.rebuild_candidate_limit;
+        if (i > 0 && may_rebuild) {
           // A stage whose arrangement lacked faces left out as internal is checked here (the last
           // one with the result): built again from every candidate when the check fails.
           const auto t_chk = Clock::now();
@@ -1319,7 +1327,7 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
             rep.unpruned_stages.push_back(n - i);
           }
         }
-        if (i == 0 && dropped > 0) redo_last = [sweep_stage, &last_cands]() { return sweep_stage(false, nullptr, &last_cands); };
+        if (i == 0 && may_rebuild) redo_last = [sweep_stage, &last_cands]() { return sweep_stage(false, nullptr, &last_cands); };
       }
       if (dim >= 2) {
         // a solid stage, from either engine: its candidates go to the report
@@ -1436,7 +1444,12 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
     // The checks on the final solid: the reason it fails, if any. Bands come from the requested
     // tolerance and the model size, never from what the computation achieved.
     const std::string invalid = "the solid is not valid (BRepCheck)";
+    // whether the last failure is one that a face left out by pruning can cause (a missing or
+    // wrong piece of boundary); a geometric error or an undecided verdict is not
+    bool rebuild_may_help = false, geometric_error = false;
     auto check_result = [&](const TopoDS_Shape& solid) -> std::string {
+      rebuild_may_help = true;
+      geometric_error = false;
       const auto t_val = Clock::now();
       const SolidChecks checks = check_solid(solid);
       rep.valid = checks.valid;
@@ -1461,10 +1474,12 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
       else if (solids > 1)
         why = "the result has " + std::to_string(solids) +
               " separate solids (that do not touch), where a connected entity under a continuous motion sweeps one connected set";
-      else if (rep.tol_achieved > tol)
+      else if (rep.tol_achieved > tol) {
+        rebuild_may_help = false;
+        geometric_error = true;
         why = "the geometric error of the solid (" + std::to_string(rep.tol_achieved) +
               ", its largest fitting error or gap between its curves, surfaces and vertices) exceeds the requested tolerance (" + std::to_string(tol) + ")";
-      else if (std::abs(rep.volume_brep - rep.volume_divergence) >
+      } else if (std::abs(rep.volume_brep - rep.volume_divergence) >
                tol * size * size + opt.settings.volume_relative_band * size * size * size)
         why = "B-rep and divergence volumes disagree (" + std::to_string(rep.volume_brep) + " vs " +
               std::to_string(rep.volume_divergence) + ")";
@@ -1475,6 +1490,7 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
       const auto t_verdict = Clock::now();
       if (!independent) {
         rep.has_verdict = false;
+        rebuild_may_help = false;
         return why.empty() ? "no membership test independent of the solid exists for a " +
                                  std::string(to_string(spec.entity.kind)) + " entity under " + std::to_string(n) +
                                  " joints: the solid cannot be checked"
@@ -1493,10 +1509,11 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
       rep.verdict_difference_bound = v.difference_bound;
       rep.verdict_box_volume = v.box_volume;
       rep.seconds["verdict"] = rep.seconds.value("verdict", 0.0) + since(t_verdict);
-      if (why.empty() && !v.decided())
+      if (why.empty() && !v.decided()) {
+        rebuild_may_help = false;
         why = "the independent membership test could not decide " + std::to_string(v.undecided) + " of " +
               std::to_string(v.samples) + " samples within its budget: the solid cannot be checked";
-      else if (why.empty() && !v.ok())
+      } else if (why.empty() && !v.ok())
         why = "the solid disagrees with the independent membership test at " +
               std::to_string(v.mismatches + v.probe_mismatches) + " of " + std::to_string(v.samples + 2 * v.probes) +
               " points; " + v.first_mismatch;
@@ -1508,16 +1525,22 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
       if (!h.IsNull()) {
         // the report now describes the healed solid, and so does the reason when it still fails
         const std::string why_healed = check_result(h);
-        if (why_healed.empty()) {
+        if (why_healed.empty() || geometric_error) {
           result = h;
           rep.healed_stages.push_back(n);
-          why.clear();
+          why = why_healed;
         } else {
           why = why_healed + " (after OCCT's shape healing of a solid that was not valid)";
         }
       }
     }
-    if (!why.empty() && redo_last) {
+    if (geometric_error) {
+      // A pcurve that strays from its edge (a fuse's or the healing's approximation) is
+      // projected again from the edge's 3-D curve; the solid is then checked again in full.
+      for (TopExp_Explorer fx(result, TopAbs_FACE); fx.More(); fx.Next()) tighten_pcurves(TopoDS::Face(fx.Current()), 0.5 * tol);
+      why = check_result(result);
+    }
+    if (!why.empty() && redo_last && rebuild_may_help) {
       // Pruning may have left out a face that carries a strip of the boundary: the last stage
       // is built again from every candidate.
       if (opt.progress) opt.progress("the solid failed its checks (" + why + "): last stage again with every candidate");

@@ -179,52 +179,47 @@ double proportion_upper_bound(std::size_t k, std::size_t n, double confidence) {
   return std::min(1.0, (centre + spread) / (1 + z * z / N));
 }
 
-VerdictResult judge_solid(const TopoDS_Shape& solid, const Eigen::AlignedBox3d& box, const MemberTestMaker& member,
-                          double tol, double size, const Settings& settings) {
-  VerdictResult r;
-  r.undecided_fraction = settings.undecided_fraction;
-  const double deflection = settings.verdict_deflection * size;
-  std::string problem;
-  std::vector<Triangle> tris = triangulate(solid, deflection, &problem);
-  if (!problem.empty()) {
-    // once more with a finer triangulation; then samples are classified by OCCT's classifier
-    tris = triangulate(solid, 0.25 * deflection, &problem);
-    r.classifier = problem.empty() ? "a finer triangulation" : "OCCT's solid classifier (" + problem + ")";
-  }
-  const bool by_mesh = problem.empty();
-  const MeshIndex mesh(by_mesh ? std::move(tris) : std::vector<Triangle>());
-  const std::vector<FaceMesh> faces = face_meshes(solid);
-  r.box_volume = box.volume();
-  const double band = tol + 3 * deflection;
-  std::mutex report;
-  auto note = [&](const std::string& what) {
-    std::lock_guard<std::mutex> lock(report);
-    if (r.first_mismatch.empty()) r.first_mismatch = what;
-  };
+namespace {
 
-  // Volume samples in the box.
+/// Serialises the first disagreement's description across threads.
+class FirstMismatch {
+ public:
+  explicit FirstMismatch(std::string& out) : out_(out) {}
+  void note(const std::string& what) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (out_.empty()) out_ = what;
+  }
+
+ private:
+  std::string& out_;
+  std::mutex mutex_;
+};
+
+/// Uniform samples in the box, each classified against the triangulated solid (or, when `mesh` is
+/// null, by OCCT's classifier) and by the membership; samples within `band` of the triangulated
+/// boundary are left out.
+void judge_samples(const TopoDS_Shape& solid, const MeshIndex* mesh, const Eigen::AlignedBox3d& box,
+                   const MemberTestMaker& member, double tol, double band, const Settings& settings,
+                   FirstMismatch& first, VerdictResult& r) {
   const std::size_t n = settings.verdict_samples;
   std::vector<Eigen::Vector3d> pts(n);
-  {
-    std::mt19937_64 rng(settings.seed);
-    std::uniform_real_distribution<double> uni(0.0, 1.0);
-    for (auto& p : pts)
-      p = box.min() + Eigen::Vector3d(uni(rng), uni(rng), uni(rng)).cwiseProduct(box.sizes());
-  }
+  std::mt19937_64 rng(settings.seed);
+  std::uniform_real_distribution<double> uni(0.0, 1.0);
+  for (auto& p : pts) p = box.min() + Eigen::Vector3d(uni(rng), uni(rng), uni(rng)).cwiseProduct(box.sizes());
   std::atomic<std::size_t> near{0}, mismatches{0}, undecided{0};
   parallel_for(n, [&]() -> std::function<void(std::size_t)> {
     const MemberTest in_set = member();
     auto cls = std::make_shared<BRepClass3d_SolidClassifier>();
-    if (!by_mesh) cls->Load(solid);
+    if (!mesh) cls->Load(solid);
     return [&, in_set, cls](std::size_t i) {
       const Eigen::Vector3d& p = pts[i];
       bool a = false;
-      if (by_mesh) {
-        if (mesh.distance_below(p, band) < band) {
+      if (mesh) {
+        if (mesh->distance_below(p, band) < band) {
           ++near;
           return;
         }
-        a = mesh.inside(p);
+        a = mesh->inside(p);
       } else {
         cls->Perform(to_pnt(p), tol);
         if (cls->State() == TopAbs_ON) {
@@ -241,8 +236,8 @@ VerdictResult judge_solid(const TopoDS_Shape& solid, const Eigen::AlignedBox3d& 
       const bool b = m == 1;
       if (a != b) {
         ++mismatches;
-        note(std::string("the point ") + point_text(p) + (b ? " of the swept set lies outside the solid"
-                                                           : " lies in the solid but not in the swept set"));
+        first.note(std::string("the point ") + point_text(p) +
+                   (b ? " of the swept set lies outside the solid" : " lies in the solid but not in the swept set"));
       }
     };
   });
@@ -250,80 +245,122 @@ VerdictResult judge_solid(const TopoDS_Shape& solid, const Eigen::AlignedBox3d& 
   r.near_boundary = near;
   r.mismatches = mismatches;
   r.undecided = undecided;
+}
 
-  // Probes just off the faces, away from the edges.
-  const double delta = settings.probe_offset * tol;
-  r.probe_offset_max = delta;
+struct Probe {
+  Eigen::Vector3d p, n;  ///< a point of a face and the outward normal there
+};
+
+/// Points on the exact faces, chosen by area, at least `clearance` from every edge.
+std::vector<Probe> pick_probes(const TopoDS_Shape& solid, const std::vector<FaceMesh>& faces, double deflection,
+                               double clearance, const Settings& settings) {
+  std::vector<Probe> probes;
   double total_area = 0;
   for (const auto& f : faces) total_area += f.area;
-  struct Probe {
-    Eigen::Vector3d p, n;
-  };
-  std::vector<Probe> probes;
-  if (total_area > 0) {
-    const EdgeSegments edges(solid, deflection);
-    std::mt19937_64 rng(settings.seed + 1);
-    std::uniform_real_distribution<double> uni(0.0, 1.0);
-    const std::size_t wanted = settings.verdict_probes;
-    for (std::size_t attempt = 0; attempt < 8 * wanted && probes.size() < wanted; ++attempt) {
-      // a face by area, a triangle of it by area, a point of it, carried to the exact surface
-      double pick = uni(rng) * total_area;
-      std::size_t fi = 0;
-      while (fi + 1 < faces.size() && pick > faces[fi].area) pick -= faces[fi++].area;
-      const FaceMesh& fm = faces[fi];
-      if (fm.uv.empty() || fm.cumulative.empty()) continue;
-      const std::size_t ti =
-          std::min<std::size_t>(std::lower_bound(fm.cumulative.begin(), fm.cumulative.end(), uni(rng) * fm.area) -
-                                    fm.cumulative.begin(),
-                                fm.uv.size() - 1);
-      double s = uni(rng), t = uni(rng);
-      if (s + t > 1) s = 1 - s, t = 1 - t;
-      const auto& uv = fm.uv[ti];
-      const gp_Pnt2d q(uv[0].X() + s * (uv[1].X() - uv[0].X()) + t * (uv[2].X() - uv[0].X()),
-                       uv[0].Y() + s * (uv[1].Y() - uv[0].Y()) + t * (uv[2].Y() - uv[0].Y()));
-      BRepAdaptor_Surface S(fm.face);
-      BRepLProp_SLProps props(S, q.X(), q.Y(), 1, 1e-9);
-      if (!props.IsNormalDefined()) continue;
-      Eigen::Vector3d nn = to_eigen(gp_Vec(props.Normal()));
-      if (fm.face.Orientation() == TopAbs_REVERSED) nn = -nn;
-      const Eigen::Vector3d p = to_eigen(props.Value());
-      if (edges.near(p, 10 * delta + deflection)) continue;
-      probes.push_back({p, nn});
-    }
+  if (total_area <= 0) return probes;
+  const EdgeSegments edges(solid, deflection);
+  std::mt19937_64 rng(settings.seed + 1);
+  std::uniform_real_distribution<double> uni(0.0, 1.0);
+  const std::size_t wanted = settings.verdict_probes;
+  for (std::size_t attempt = 0; attempt < 8 * wanted && probes.size() < wanted; ++attempt) {
+    // a face by area, a triangle of it by area, a point of it, carried to the exact surface
+    double pick = uni(rng) * total_area;
+    std::size_t fi = 0;
+    while (fi + 1 < faces.size() && pick > faces[fi].area) pick -= faces[fi++].area;
+    const FaceMesh& fm = faces[fi];
+    if (fm.uv.empty() || fm.cumulative.empty()) continue;
+    const std::size_t ti = std::min<std::size_t>(
+        std::lower_bound(fm.cumulative.begin(), fm.cumulative.end(), uni(rng) * fm.area) - fm.cumulative.begin(),
+        fm.uv.size() - 1);
+    double s = uni(rng), t = uni(rng);
+    if (s + t > 1) s = 1 - s, t = 1 - t;
+    const auto& uv = fm.uv[ti];
+    const gp_Pnt2d q(uv[0].X() + s * (uv[1].X() - uv[0].X()) + t * (uv[2].X() - uv[0].X()),
+                     uv[0].Y() + s * (uv[1].Y() - uv[0].Y()) + t * (uv[2].Y() - uv[0].Y()));
+    BRepAdaptor_Surface S(fm.face);
+    BRepLProp_SLProps props(S, q.X(), q.Y(), 1, 1e-9);
+    if (!props.IsNormalDefined()) continue;
+    Eigen::Vector3d nn = to_eigen(gp_Vec(props.Normal()));
+    if (fm.face.Orientation() == TopAbs_REVERSED) nn = -nn;
+    const Eigen::Vector3d p = to_eigen(props.Value());
+    if (edges.near(p, clearance)) continue;
+    probes.push_back({p, nn});
   }
-  std::atomic<std::size_t> probe_bad{0}, probe_undecided{0};
-  parallel_for(probes.size(), [&]() -> std::function<void(std::size_t)> {
-    const MemberTest in_set = member();
-    return [&, in_set](std::size_t i) {
-      // where the membership cannot decide this close, farther off, up to the triangulation's
-      // deflection (the samples' band)
-      int mo = -1, mi = -1;
-      double off = delta;
-      for (; off <= std::max(delta, deflection) * (1 + 1e-12); off *= 4) {
-        mo = in_set(probes[i].p + off * probes[i].n);
-        mi = mo < 0 ? -1 : in_set(probes[i].p - off * probes[i].n);
-        if (mo >= 0 && mi >= 0) break;
-      }
-      if (mo < 0 || mi < 0) {
-        ++probe_undecided;
-        return;
-      }
-      if (off > delta) {
-        std::lock_guard<std::mutex> lock(report);
-        r.probe_offset_max = std::max(r.probe_offset_max, off);
-      }
-      const bool out_in_set = mo == 1, in_in_set = mi == 1;
-      if (out_in_set || !in_in_set) {
-        ++probe_bad;
-        note(std::string("the boundary of the solid at ") + point_text(probes[i].p) + " is not that of the swept set (" +
-             (out_in_set ? "a point just outside it is swept" : "a point just inside it is not swept") + ")");
-      }
-    };
-  });
-  r.probes = probes.size();
-  r.probe_mismatches = probe_bad;
-  r.probe_undecided = probe_undecided;
+  return probes;
+}
 
+/// Each probe tested by the membership at `delta` outside and inside its face (where the
+/// membership cannot decide that close, farther off, up to `deflection`). In batches: when the
+/// membership leaves almost every probe of the first batch undecided (a search over joint
+/// parameters this close to the boundary), the rest are not tried.
+void judge_probes(const std::vector<Probe>& probes, const MemberTestMaker& member, double delta, double deflection,
+                  FirstMismatch& first, VerdictResult& r) {
+  std::atomic<std::size_t> bad{0}, undecided{0};
+  std::mutex offset_mutex;
+  r.probe_offset_max = delta;
+  const std::size_t batch = 64;
+  std::size_t tried = 0;
+  while (tried < probes.size()) {
+    const std::size_t start = tried, count = std::min(batch, probes.size() - start);
+    const std::size_t undecided_before = undecided;
+    parallel_for(count, [&]() -> std::function<void(std::size_t)> {
+      const MemberTest in_set = member();
+      return [&, in_set, start](std::size_t k) {
+        const Probe& pr = probes[start + k];
+        int mo = -1, mi = -1;
+        double off = delta;
+        for (; off <= std::max(delta, deflection) * (1 + 1e-12); off *= 4) {
+          mo = in_set(pr.p + off * pr.n);
+          mi = mo < 0 ? -1 : in_set(pr.p - off * pr.n);
+          if (mo >= 0 && mi >= 0) break;
+        }
+        if (mo < 0 || mi < 0) {
+          ++undecided;
+          return;
+        }
+        if (off > delta) {
+          std::lock_guard<std::mutex> lock(offset_mutex);
+          r.probe_offset_max = std::max(r.probe_offset_max, off);
+        }
+        const bool out_in_set = mo == 1, in_in_set = mi == 1;
+        if (out_in_set || !in_in_set) {
+          ++bad;
+          first.note(std::string("the boundary of the solid at ") + point_text(pr.p) + " is not that of the swept set (" +
+                     (out_in_set ? "a point just outside it is swept" : "a point just inside it is not swept") + ")");
+        }
+      };
+    });
+    tried += count;
+    if (start == 0 && undecided - undecided_before >= count * 9 / 10) break;
+  }
+  r.probes = tried;
+  r.probe_mismatches = bad;
+  r.probe_undecided = undecided;
+}
+
+}  // namespace
+
+VerdictResult judge_solid(const TopoDS_Shape& solid, const Eigen::AlignedBox3d& box, const MemberTestMaker& member,
+                          double tol, double size, const Settings& settings) {
+  VerdictResult r;
+  r.undecided_fraction = settings.undecided_fraction;
+  const double deflection = settings.verdict_deflection * size;
+  std::string problem;
+  std::vector<Triangle> tris = triangulate(solid, deflection, &problem);
+  if (!problem.empty()) {
+    // once more with a finer triangulation; then samples are classified by OCCT's classifier
+    tris = triangulate(solid, 0.25 * deflection, &problem);
+    r.classifier = problem.empty() ? "a finer triangulation" : "OCCT's solid classifier (" + problem + ")";
+  }
+  const bool by_mesh = problem.empty();
+  const MeshIndex mesh(by_mesh ? std::move(tris) : std::vector<Triangle>());
+  const std::vector<FaceMesh> faces = face_meshes(solid);
+  r.box_volume = box.volume();
+  FirstMismatch first(r.first_mismatch);
+  judge_samples(solid, by_mesh ? &mesh : nullptr, box, member, tol, tol + 3 * deflection, settings, first, r);
+  const double delta = settings.probe_offset * tol;
+  judge_probes(pick_probes(solid, faces, deflection, 10 * delta + deflection, settings), member, delta, deflection,
+               first, r);
   // The symmetric difference: where samples disagree, the band that was not tested and the
   // samples the membership did not decide.
   r.difference_bound =

@@ -24,6 +24,12 @@ struct Settings {
   /// twice that; a piece is kept when exactly one side is in the swept set.
   double classify_offset = 2e-6;
 
+  // --- building a stage from the arrangement of its candidate faces
+  /// A stage whose arrangement of the candidates left after pruning fails its checks is built
+  /// again from every candidate when they are at most this many (the arrangement's time grows
+  /// fast with their number: 390 faces take about 20 minutes).
+  std::size_t rebuild_candidate_limit = 200;
+
   // --- the verdict: the solid against a membership test that does not use it
   /// Points sampled uniformly in the box that holds the swept set.
   std::size_t verdict_samples = 4096;
