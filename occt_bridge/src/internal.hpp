@@ -208,6 +208,11 @@ TopoDS_Shape read_shape_file(const std::string& path, const std::string& pointer
 }  // namespace sweep::occt
 
 namespace sweep::occt {
+/// Installs OCCT's handlers for SIGSEGV, SIGFPE, SIGBUS and the like, so that inside
+/// OCC_CATCH_SIGNALS a fault in OCCT is thrown as a Standard_Failure and the run reports `failed`
+/// instead of crashing. Without `replace_existing` only signals that have no handler yet get one
+/// (inside FreeCAD or Python their own handlers stay).
+void install_signal_handlers(bool replace_existing = false);
 /// Replaces each pcurve of the face that strays from its edge by more than tol by a projection
 /// of the edge onto the surface, and sets the edge's tolerance from the deviation measured.
 void tighten_pcurves(const TopoDS_Face& face, double tol);

@@ -32,6 +32,7 @@
 #include <Geom_Line.hxx>
 #include <ShapeAnalysis_Shell.hxx>
 #include <ShapeFix_Shape.hxx>
+#include <Standard_ErrorHandler.hxx>
 #include <Standard_Failure.hxx>
 #include <TColgp_Array1OfPnt.hxx>
 #include <TopExp.hxx>
@@ -1143,7 +1144,9 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
     return res;
   };
   if (motion.dof() == 0) return fail("the motion has no joint");
+  install_signal_handlers();
   try {
+    OCC_CATCH_SIGNALS
     // Size and tolerance from the entity and the reach of the motion.
     double fit_err = 0;
     // Parametric curves and surfaces are fitted once the tolerance is known; their extent comes
