@@ -1624,17 +1624,15 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
       box.extend(box.min() - Eigen::Vector3d::Constant(0.01 * size));
       box.extend(box.max() + Eigen::Vector3d::Constant(0.01 * size));
       MonteCarloResult mc;
-      // For the membership searches: a revolute joint beyond a full turn covers nothing new.
-      Motion m = motion;
-      for (auto& jj : m.joints)
-        if (jj.type == JointType::Revolute && jj.hi - jj.lo > 2 * M_PI) jj.hi = jj.lo + 2 * M_PI;
+      // the membership searches run over the clipped motion of the verdict
+      const Motion& m = clipped;
       const std::size_t chain_samples = std::max<std::size_t>(opt.settings.mc_samples / 8, 20000);
       if (sd) {
         mc = monte_carlo_volume([&](const Eigen::Vector3d& x) { return in_swept_set(*sd, m, x, 1e-9 * size); }, box,
                                 n == 1 ? opt.settings.mc_samples : chain_samples, opt.settings.seed);
       } else if (n == 1) {
-        const ScrewJoint& j = motion.joints[0];
-        const double T = std::min(j.hi - j.lo, j.type == JointType::Revolute ? 2 * M_PI : 1e300);
+        const ScrewJoint& j = clipped.joints[0];
+        const double T = j.hi - j.lo;
         TopoDS_Shape body = moved(moved(raw, motion.home), j.transform(j.lo));
         TrajectoryMembership by_trajectory(body, rep.dimension == 3 && spec.entity.dimension() == 3, j, T, 1e-9 * size);
         mc = monte_carlo_volume(
