@@ -147,9 +147,9 @@ TopoDS_Shape graph_extrusion(const TopoDS_Face& face, const ScrewJoint& j, doubl
 /// Keeps OCCT's translators from printing to stdout (stdout carries the report).
 void quiet_occt();
 
-/// The shape with its same-domain faces merged (ShapeUpgrade_UnifySameDomain), when that gives a
-/// valid shape within `seconds`; a null shape otherwise (the caller keeps its own).
-TopoDS_Shape unify_faces(const TopoDS_Shape& shape, double seconds);
+/// The shape with the neighbouring pieces of each surface merged into one face, when that gives a
+/// valid shape; a null shape otherwise (the caller keeps its own). A bounded walk, no time limit.
+TopoDS_Shape unify_faces(const TopoDS_Shape& shape);
 
 /// Runs work(i) for every i in [0, n) on the machine's cores (at most eight threads). Each thread
 /// gets its own worker from make(): OCCT's classifiers and intersectors are not shared between

@@ -902,7 +902,6 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
   const double fuzzy = std::max(1e-7 * size, 10 * fit_err);
   BOPAlgo_MakerVolume mv;
   TopoDS_Shape result;
-  const auto t_arrangements = Clock::now();
   for (int round = 0;; ++round) {
     const auto t_arr = Clock::now();
     TopTools_ListOfShape args;
@@ -996,9 +995,8 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
       result = fuse.Shape();
     }
   }
-  // Merging same-domain faces is cosmetic: its result is used only when it is a valid solid and
-  // comes within a time limit (generous against the arrangement's own time).
-  const TopoDS_Shape merged = unify_faces(result, std::max(10.0, 2 * since(t_arrangements)));
+  // Merging the pieces of a surface is cosmetic: its result is used only when it is a valid solid.
+  const TopoDS_Shape merged = unify_faces(result);
   if (!merged.IsNull()) result = merged;
   sec["build"] += since(t_build);
   if (cand_out) *cand_out = std::move(cand);
