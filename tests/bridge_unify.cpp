@@ -79,8 +79,8 @@ TEST_CASE("Merging faces: a cylinder cut across and along its axis gets its late
   CHECK(BRepCheck_Analyzer(m).IsValid());
   CHECK(count_faces(m) == 3);
   CHECK(volume_of(m) == Approx(3 * M_PI).epsilon(1e-9));
-  // Cut along the axis, the two half-cylinder pieces would close the surface around without a
-  // seam: they stay split, and the result is still valid.
+  // Cut along the axis, joining the two half-cylinder pieces would close the surface around
+  // without a seam: whatever merges, the result stays valid and keeps its volume.
   const TopoDS_Shape along = split_and_refused(cyl, gp_Pln(gp_Pnt(0, 0, 0), gp_Dir(1, 0, 0)));
   const TopoDS_Shape m2 = sweep::occt::unify_faces(along);
   const TopoDS_Shape out = m2.IsNull() ? along : m2;

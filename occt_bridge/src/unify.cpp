@@ -17,10 +17,8 @@
 #include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
 #include <TopTools_IndexedMapOfShape.hxx>
 #include <TopoDS.hxx>
-#include <TopoDS_Iterator.hxx>
 #include <TopoDS_Wire.hxx>
 
-#include <algorithm>
 #include <map>
 #include <numeric>
 #include <vector>
@@ -62,7 +60,7 @@ struct Groups {
 /// Whether the edge between two faces may be dropped to join them: a manifold edge (two faces),
 /// not degenerate, not a seam of either, both faces on the same surface with the same orientation.
 bool joinable(const TopoDS_Edge& e, const TopoDS_Face& a, const TopoDS_Face& b) {
-  if (a.IsSame(b) || BRep_Tool::Degenerated(e)) return false;
+  if (BRep_Tool::Degenerated(e)) return false;
   if (a.Orientation() != b.Orientation()) return false;
   if (BRep_Tool::IsClosed(e, a) || BRep_Tool::IsClosed(e, b)) return false;
   if (e.Orientation() != TopAbs_FORWARD && e.Orientation() != TopAbs_REVERSED) return false;
@@ -76,46 +74,38 @@ bool joinable(const TopoDS_Edge& e, const TopoDS_Face& a, const TopoDS_Face& b) 
 TopoDS_Face merged_face(const std::vector<TopoDS_Face>& group) {
   const SurfaceOf surf = surface_of(group[0]);
   const TopoDS_Face ref = TopoDS::Face(group[0].Oriented(TopAbs_FORWARD));
-  std::map<const void*, int> uses;
+  // An edge met once in each of two faces of the group lies inside the merged face; a seam is met
+  // twice in one face and stays.
+  struct Meetings {
+    int uses = 0, faces = 0;
+    std::size_t last_face = std::size_t(-1);
+  };
+  std::map<const void*, Meetings> met;
   std::vector<TopoDS_Edge> all;
-  for (const TopoDS_Face& f : group) {
-    for (TopExp_Explorer ex(f.Oriented(TopAbs_FORWARD), TopAbs_EDGE); ex.More(); ex.Next()) {
+  for (std::size_t i = 0; i < group.size(); ++i) {
+    for (TopExp_Explorer ex(group[i].Oriented(TopAbs_FORWARD), TopAbs_EDGE); ex.More(); ex.Next()) {
       const TopoDS_Edge e = TopoDS::Edge(ex.Current());
       if (e.Orientation() != TopAbs_FORWARD && e.Orientation() != TopAbs_REVERSED) return {};
+      double f = 0, l = 0;
+      if (BRep_Tool::CurveOnSurface(e, ref, f, l).IsNull()) return {};
       all.push_back(e);
-      ++uses[e.TShape().get()];
+      Meetings& m = met[e.TShape().get()];
+      ++m.uses;
+      if (m.last_face != i) ++m.faces, m.last_face = i;
     }
   }
-  // An edge met once per face of the group on both sides lies inside the merged face; a seam is
-  // met twice in one face and stays.
   std::vector<TopoDS_Edge> boundary;
   for (const TopoDS_Edge& e : all) {
-    bool inner = false;
-    if (uses[e.TShape().get()] == 2) {
-      int faces_with = 0;
-      for (const TopoDS_Face& f : group) {
-        for (TopExp_Explorer ex(f, TopAbs_EDGE); ex.More(); ex.Next())
-          if (ex.Current().IsSame(e)) {
-            ++faces_with;
-            break;
-          }
-      }
-      inner = faces_with == 2;
-    }
-    if (!inner) boundary.push_back(e);
+    const Meetings& m = met[e.TShape().get()];
+    if (!(m.uses == 2 && m.faces == 2)) boundary.push_back(e);
   }
   if (boundary.empty()) return {};
   auto uv_end = [&](const TopoDS_Edge& e, bool start) {
     double f = 0, l = 0;
     const Handle(Geom2d_Curve) pc = BRep_Tool::CurveOnSurface(e, ref, f, l);
-    if (pc.IsNull()) return gp_Pnt2d(1e300, 1e300);
     const bool fwd = e.Orientation() == TopAbs_FORWARD;
     return pc->Value((start == fwd) ? f : l);
   };
-  for (const TopoDS_Edge& e : boundary) {
-    double f = 0, l = 0;
-    if (BRep_Tool::CurveOnSurface(e, ref, f, l).IsNull()) return {};
-  }
   BRep_Builder bb;
   TopoDS_Face face;
   bb.MakeFace(face, surf.surface, surf.location, BRep_Tool::Tolerance(group[0]));
