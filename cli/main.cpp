@@ -12,6 +12,7 @@
 #include "joints_cmd.hpp"
 #include "args.hpp"
 #include "section_cmd.hpp"
+#include "stop_request.hpp"
 #include "occt_bridge/sweeper.hpp"
 #include "sweep/error.hpp"
 #include "sweep/spec.hpp"
@@ -22,27 +23,30 @@ const char* kUsage =
     "usage: sweepvol COMMAND [ARGS]\n"
     "\n"
     "commands:\n"
-    "  run SPEC [-o OUT] [--report R.json] [--set PATH=VALUE]... [--verify]\n"
-    "      compute the swept solid; OUT by extension: .step/.stp, .brep, .stl (binary), .off\n"
+    "  run SPEC [-o OUT] [--report R.json] [--set PATH=VALUE]... [--verify] [--time-limit S]\n"
+    "      compute the swept solid; OUT by extension: .step/.stp, .brep, .stl (binary), .off;\n"
+    "      --time-limit stops the run after S seconds (status failed, exit 3)\n"
     "  check SPEC [--set PATH=VALUE]...\n"
     "      validate the spec only\n"
-    "  varieties SPEC [-o V.json] [--faces F.brep|F.step] [--svg F.svg] [--set PATH=VALUE]...\n"
+    "  varieties SPEC [-o V.json] [--faces F.brep|F.step] [--svg F.svg] [--set PATH=VALUE]... [--time-limit S]\n"
     "      the boundary varieties of every stage: fixed and free parameters, the part on the final\n"
     "      boundary and its volume contribution; --faces writes the last stage's candidate faces,\n"
     "      --svg draws them (parallel projection, one colour per variety, legend)\n"
-    "  section SPEC --z Z1,Z2,... [--svg F.svg] [-o S.json] [--set PATH=VALUE]...\n"
+    "  section SPEC --z Z1,Z2,... [--svg F.svg] [-o S.json] [--set PATH=VALUE]... [--time-limit S]\n"
     "      cut the swept solid by the planes z = Z1, Z2, ...: area, loops and box of each section\n"
     "      (JSON, also written to S.json with -o); --svg draws them side by side\n"
     "  joints ASSEMBLY.json [--json] [--dot G.dot] [--motion-for PART [--range NAME=lo,hi]...]\n"
     "      kinematic joint recognition\n"
     "  --help, --version\n"
     "\n"
-    "exit codes: 0 success, 2 invalid input, 3 computation failed or result not valid, 1 internal error\n";
+    "exit codes: 0 success, 2 invalid input, 3 computation failed or result not valid, 1 internal error;\n"
+    "Ctrl-C (SIGINT) or SIGTERM stops a run as failed (exit 3); a second one ends the process\n";
 
 struct Args {
   std::string spec, out, report, faces, svg;
   std::vector<std::string> sets;
   bool verify = false;
+  double time_limit = 0;  ///< seconds; 0: none
 };
 
 Args parse_args(int argc, char** argv, bool allow_output) {
@@ -57,6 +61,7 @@ Args parse_args(int argc, char** argv, bool allow_output) {
     else if (allow_output && s == "--verify") a.verify = true;
     else if (allow_output && s == "--faces") a.faces = value("--faces");
     else if (allow_output && s == "--svg") a.svg = value("--svg");
+    else if (allow_output && s == "--time-limit") a.time_limit = sweep::cli::parse_time_limit(value("--time-limit"));
     else if (!s.empty() && s[0] == '-') throw sweep::InputError(s, "unknown option '" + s + "'");
     else if (a.spec.empty()) a.spec = s;
     else throw sweep::InputError(s, "unexpected argument '" + s + "'");
@@ -97,6 +102,7 @@ int cmd_run(int argc, char** argv) {
   sweep::occt::RunOptions opt;
   opt.verify = a.verify;
   if (isatty(STDERR_FILENO)) opt.progress = [](const std::string& line) { std::cerr << "sweepvol: " << line << "\n"; };
+  opt.stop = sweep::cli::stop_request(a.time_limit);
   sweep::occt::RunResult r = sweep::occt::run_sweep(s, opt);
   if (r.report.ok() && !a.out.empty()) {
     try {
@@ -133,6 +139,7 @@ int cmd_varieties(int argc, char** argv) {
   std::vector<int> face_ids;
   opt.variety_face_ids = &face_ids;
   if (isatty(STDERR_FILENO)) opt.progress = [](const std::string& line) { std::cerr << "sweepvol: " << line << "\n"; };
+  opt.stop = sweep::cli::stop_request(a.time_limit);
   sweep::occt::RunResult r = sweep::occt::run_sweep(s, opt);
   nlohmann::json out;
   out["sweep_varieties"] = 1;

@@ -1,6 +1,7 @@
 // sweepvol section: cross-sections z = const of the swept solid, as JSON and as an SVG drawing;
 // and the SVG drawing of `sweepvol varieties --svg`.
 #include "section_cmd.hpp"
+#include "stop_request.hpp"
 #include "args.hpp"
 
 #include <algorithm>
@@ -24,6 +25,7 @@ struct SectionArgs {
   std::vector<std::string> sets;
   bool has_z = false;
   std::string z;
+  double time_limit = 0;  ///< seconds; 0: none
 };
 
 /// "1,5,10": finite numbers separated by commas.
@@ -60,6 +62,7 @@ SectionArgs parse_section_args(int argc, char** argv) {
     else if (s == "--svg") a.svg = value("--svg");
     else if (s.rfind("--svg=", 0) == 0) a.svg = s.substr(6);
     else if (s == "-o") a.out = value("-o");
+    else if (s == "--time-limit") a.time_limit = sweep::cli::parse_time_limit(value("--time-limit"));
     else if (!s.empty() && s[0] == '-') throw sweep::InputError(s, "unknown option '" + s + "'");
     else if (a.spec.empty()) a.spec = s;
     else throw sweep::InputError(s, "unexpected argument '" + s + "'");
@@ -93,6 +96,7 @@ int sweep_section_main(int argc, char** argv) {
   const sweep::Spec spec = sweep::load_spec(a.spec, a.sets);
   sweep::occt::RunOptions opt;
   if (isatty(STDERR_FILENO)) opt.progress = [](const std::string& line) { std::cerr << "sweepvol: " << line << "\n"; };
+  opt.stop = sweep::cli::stop_request(a.time_limit);
   sweep::occt::RunResult r = sweep::occt::run_sweep(spec, opt);
 
   nlohmann::json out;

@@ -8,9 +8,12 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <atomic>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -29,6 +32,23 @@ namespace {
 /// Python exception classes, created once at import.
 PyObject* g_input_error = nullptr;
 PyObject* g_compute_error = nullptr;
+/// set by cancel(), cleared when a run starts
+std::atomic<bool> g_cancel{false};
+
+/// The stop request of one run: cancel() from another thread, or the time limit (seconds, 0: none).
+std::function<std::string()> stop_request(double time_limit) {
+  g_cancel = false;
+  const auto start = std::chrono::steady_clock::now();
+  return [start, time_limit]() -> std::string {
+    if (g_cancel) return "cancelled";
+    if (time_limit > 0 && std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > time_limit) {
+      char text[80];
+      std::snprintf(text, sizeof text, "the time limit of %g s was reached", time_limit);
+      return text;
+    }
+    return {};
+  };
+}
 
 /// Raises InputError with the attributes `pointer`, `line` and `column` set.
 [[noreturn]] void raise_input_error(const sweep::InputError& e, const std::string& source) {
@@ -171,9 +191,10 @@ sweep::occt::RunResult guarded_run(const Prepared& p, const sweep::occt::RunOpti
 
 py::dict run(const py::handle& spec, const std::string& base_dir, const std::vector<std::string>& overrides,
              const std::optional<std::string>& entity_brep, bool verify, std::size_t mc_samples,
-             std::uint64_t mc_seed, const std::string& source) {
+             std::uint64_t mc_seed, const std::string& source, double time_limit) {
   Prepared p = prepare(spec, base_dir, overrides, entity_brep, source);
   sweep::occt::RunOptions opt;
+  opt.stop = stop_request(time_limit);
   opt.verify = verify;
   opt.settings.mc_samples = mc_samples;
   opt.settings.seed = mc_seed;
@@ -187,9 +208,10 @@ py::dict run(const py::handle& spec, const std::string& base_dir, const std::vec
 }
 
 py::dict varieties(const py::handle& spec, const std::string& base_dir, const std::vector<std::string>& overrides,
-                   const std::optional<std::string>& entity_brep, const std::string& source) {
+                   const std::optional<std::string>& entity_brep, const std::string& source, double time_limit) {
   Prepared p = prepare(spec, base_dir, overrides, entity_brep, source);
   sweep::occt::RunOptions opt;
+  opt.stop = stop_request(time_limit);
   std::vector<sweep::occt::Variety> vars;
   std::shared_ptr<const sweep::occt::Shape> faces;
   opt.varieties = &vars;
@@ -259,12 +281,15 @@ PYBIND11_MODULE(_sweepcore, m) {
         py::arg("overrides") = std::vector<std::string>(), py::arg("entity_brep") = py::none(),
         py::arg("verify") = false, py::arg("mc_samples") = sweep::Settings().mc_samples,
         py::arg("mc_seed") = sweep::Settings().seed, py::arg("source") = std::string(),
+        py::arg("time_limit") = 0.0,
         R"(Computes the solid swept by a spec v1.
 
 spec: JSON text or a dict. base_dir: directory that relative file names are resolved against.
 overrides: "/json/pointer=value" strings, as sweepvol's --set. entity_brep: BRep text that
 replaces the spec's entity (its placement is kept). verify: add the Monte Carlo volume.
-source: name used in error messages for text specs (a file name).
+source: name used in error messages for text specs (a file name). time_limit: seconds after which
+the run stops (0: none). The GIL is released while it computes; cancel() from another thread
+stops it.
 
 Returns {"report": report v1 dict, "brep": BRep text of the solid or None unless the status is
 "ok", "spec": the spec after overrides}. A computation that fails is a report with status
@@ -276,9 +301,13 @@ Returns {"report": report v1 dict, "brep": BRep text of the solid or None unless
 Raises InputError for invalid input.)");
   m.def("varieties", &varieties, py::arg("spec"), py::arg("base_dir") = std::string(),
         py::arg("overrides") = std::vector<std::string>(), py::arg("entity_brep") = py::none(),
-        py::arg("source") = std::string(),
+        py::arg("source") = std::string(), py::arg("time_limit") = 0.0,
         R"(The boundary varieties of every stage. Returns {"report", "varieties" (list of dicts: stage, joint,
 type, what, fixed, free, faces, area, and for the last stage boundary_area and volume), "brep" (the last
 stage's candidate faces as BRep text, or None when the sweep failed)}.)");
+  m.def("cancel", [] { g_cancel = true; },
+        R"(Stops the run or varieties call computing now (from another thread): it returns a report with
+status "failed" and message "stopped: cancelled" within a few seconds. A call that starts later is
+not affected.)");
   m.def("file_volume", &file_volume, py::arg("path"), "Volume of the shapes in a STEP or BREP file.");
 }

@@ -19,6 +19,7 @@
 #include <TopoDS_Iterator.hxx>
 
 #include "internal.hpp"
+#include "stop.hpp"
 
 namespace sweep::occt {
 
@@ -94,7 +95,8 @@ TopoDS_Shape solid_from_boundary_faces(const std::vector<TopoDS_Face>& split, co
   bs.SetShapes(bounding);
   bs.SetAvoidInternalShapes(true);
   bs.SetRunParallel(false);
-  bs.Perform();
+  bs.Perform(stop_range());
+  check_stop();
   // every boundary piece must end up on a shell: a solid built without some of them could look
   // valid and closed and still miss part of the set
   if (bs.HasErrors() || bs.HasWarnings()) return {};

@@ -43,6 +43,7 @@
 #include <map>
 #include <numeric>
 
+#include "stop.hpp"
 #include "sweep/error.hpp"
 
 namespace sweep::occt {
@@ -157,7 +158,8 @@ TopoDS_Shape split_at_grazing(const TopoDS_Shape& body, const ScrewJoint& j, dou
   splitter.SetTools(tools);
   splitter.SetNonDestructive(true);
   splitter.SetFuzzyValue(1e-9 * size);
-  splitter.Build();
+  splitter.Build(stop_range());
+  check_stop();
   if (!splitter.IsDone() || splitter.HasErrors()) throw ComputeError("the body's faces could not be split at their grazing curves");
   return splitter.Shape();
 }
@@ -384,7 +386,8 @@ BoundarySweep boundary_sweep(const TopoDS_Shape& body, const ScrewJoint& j, doub
       gf.SetArguments(args);
       gf.SetNonDestructive(true);
       gf.SetFuzzyValue(eps);
-      gf.Build();
+      gf.Build(stop_range());
+      check_stop();
       if (!gf.IsDone() || gf.HasErrors()) {
         out.failure = "the arrangement of candidate faces on one surface failed";
         return out;
@@ -562,7 +565,8 @@ BoundarySweep boundary_sweep(const TopoDS_Shape& body, const ScrewJoint& j, doub
     out.failure = "no piece of the candidate boundary separates the swept set from its complement";
     return out;
   }
-  sewing.Perform();
+  sewing.Perform(stop_range());
+  check_stop();
   const TopoDS_Shape sewn = sewing.SewedShape();
   BRepBuilderAPI_MakeSolid ms;
   int shells = 0;

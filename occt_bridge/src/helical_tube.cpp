@@ -43,6 +43,7 @@
 #include <functional>
 
 #include "internal.hpp"
+#include "stop.hpp"
 
 namespace sweep::occt {
 namespace {
@@ -315,7 +316,8 @@ bool build_tube(const Eigen::Vector3d& c, double r, const ScrewJoint& j, double 
 TopoDS_Shape sew_solid(const std::vector<TopoDS_Face>& fs, double tol, const OutwardHint* hint) {
   BRepBuilderAPI_Sewing sew(tol);
   for (const auto& f : fs) sew.Add(f);
-  sew.Perform();
+  sew.Perform(stop_range());
+  check_stop();
   TopoDS_Shape sewn = sew.SewedShape();
   TopExp_Explorer sx(sewn, TopAbs_SHELL);
   if (!sx.More()) return {};

@@ -27,6 +27,7 @@
 #include <cmath>
 
 #include "internal.hpp"
+#include "stop.hpp"
 #include "sweep/error.hpp"
 
 namespace sweep::occt {
@@ -121,7 +122,8 @@ std::vector<TopoDS_Face> planar_curve_sweep(const Handle(Geom_Curve)& c, double 
   sp.SetTools(tools);
   sp.SetRunParallel(true);
   sp.SetFuzzyValue(1e-9 * size);
-  sp.Build();
+  sp.Build(stop_range());
+  check_stop();
   if (!sp.IsDone() || sp.HasErrors()) throw ComputeError("could not split the plane of a planar sweep");
 
   TopoDS_Compound kept;

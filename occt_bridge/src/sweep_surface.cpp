@@ -431,6 +431,39 @@ std::vector<double> axial_breaks(const Handle(Geom_Curve)& c, double first, doub
   return cuts;
 }
 
+/// The parameters inside (first, last) where the curve meets the joint's axis (within `tol`): a
+/// revolution cannot carry a curve across its axis, the pieces on either side sweep separately.
+std::vector<double> axis_crossings(const Handle(Geom_Curve)& c, double first, double last, const ScrewJoint& j,
+                                   double tol) {
+  const gp_Vec w = to_vec(j.direction);
+  const gp_Pnt p0 = to_pnt(j.point);
+  auto radial = [&](const gp_Vec& v) { return v - w * v.Dot(w); };
+  auto dist = [&](double u) { return radial(gp_Vec(p0, c->Value(u))).Magnitude(); };
+  // the derivative of the squared distance to the axis: minima where it turns from - to +
+  auto slope = [&](double u) {
+    gp_Pnt p;
+    gp_Vec d;
+    c->D1(u, p, d);
+    return radial(gp_Vec(p0, p)).Dot(radial(d));
+  };
+  const int n = 64;
+  std::vector<double> cuts;
+  std::vector<double> u(n + 1), g(n + 1);
+  for (int k = 0; k <= n; ++k) u[k] = first + (last - first) * k / n, g[k] = slope(u[k]);
+  for (int k = 1; k <= n; ++k) {
+    if (!(g[k - 1] < 0 && g[k] >= 0)) continue;
+    double lo = u[k - 1], hi = u[k];
+    for (int it = 0; it < 80; ++it) {
+      const double m = 0.5 * (lo + hi);
+      (slope(m) < 0 ? lo : hi) = m;
+    }
+    const double at = 0.5 * (lo + hi);
+    if (dist(at) > tol) continue;
+    if (at - first > 1e-7 * (last - first) && last - at > 1e-7 * (last - first)) cuts.push_back(at);
+  }
+  return cuts;
+}
+
 std::vector<TopoDS_Face> sweep_curve(const Handle(Geom_Curve)& c, double first, double last,
                                      const ScrewJoint& j, double T, double tol, double* fit_error) {
   std::vector<TopoDS_Face> out;
@@ -458,6 +491,7 @@ std::vector<TopoDS_Face> sweep_curve(const Handle(Geom_Curve)& c, double first, 
     // Two points of one curve at the same axial height and radius would sweep the same circle:
     // split the curve where its axial coordinate turns, so each piece sweeps one-to-one.
     std::vector<double> cuts = axial_breaks(c, first, last, j);
+    if (cuts.empty()) cuts = axis_crossings(c, first, last, j, std::max(tol, 1e-7));
     if (!cuts.empty()) {
       double a = first;
       cuts.push_back(last);

@@ -54,6 +54,7 @@
 #include <sstream>
 
 #include "internal.hpp"
+#include "stop.hpp"
 #include "sweep/error.hpp"
 #include "sweep/membership.hpp"
 #include "sweep/orbit.hpp"
@@ -100,7 +101,8 @@ nlohmann::json Report::to_json() const {
                    {"probe_undecided", verdict_probe_undecided},
                    {"probe_offset", verdict_probe_offset},
                    {"box_volume", verdict_box_volume},
-                   {"membership", verdict_membership}};
+                   {"membership", verdict_membership},
+                   {"classifier", verdict_classifier}};
   j["dimension"] = dimension;
   j["tolerance"] = {{"requested", tol_requested}, {"achieved", tol_achieved}};
   nlohmann::json s = seconds;
@@ -787,6 +789,7 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
               Eigen::Vector3d nn = to_eigen(gp_Vec(props.Normal()));
               if (f.Orientation() == TopAbs_REVERSED) nn = -nn;
               ++visited;
+              check_stop();
               if (!visit(to_eigen(props.Value()), nn)) return visited;
             }
           return visited;
@@ -960,6 +963,7 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
     const auto member = member_test();
     int ncells = 0;
     for (TopExp_Explorer ex(mv.Shape(), TopAbs_SOLID); ex.More(); ex.Next()) {
+      check_stop();
       ++ncells;
       TopoDS_Solid cell = TopoDS::Solid(ex.Current());
       Eigen::Vector3d p;
@@ -1143,6 +1147,12 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
   };
   if (motion.dof() == 0) return fail("the motion has no joint");
   install_signal_handlers();
+  const StopScope stop_scope(opt.stop);
+  // each step of a long run: the stop request is polled, then the step is shown
+  const auto step = [&](const std::string& what) {
+    check_stop();
+    if (opt.progress) opt.progress(what);
+  };
   try {
     OCC_CATCH_SIGNALS
     // Size and tolerance from the entity and the reach of the motion.
@@ -1208,15 +1218,14 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
     Eigen::Isometry3d G = motion.home;
     bool entity_intact = parametric;
     for (int i = n - 1; i >= 0; --i) {
-      if (opt.progress)
-        opt.progress("stage " + std::to_string(n - i) + "/" + std::to_string(n) + ": joint " + std::to_string(i + 1) +
-                     " (" + to_string(motion.joints[i].type) + ")");
+      step("stage " + std::to_string(n - i) + "/" + std::to_string(n) + ": joint " + std::to_string(i + 1) + " (" +
+           to_string(motion.joints[i].type) + ")");
       ScrewJoint j = motion.joints[i];
       double T = j.hi - j.lo;
       if (j.type == JointType::Revolute && T >= 2 * M_PI) T = 2 * M_PI;  // a full turn covers everything
       EntitySpec extended;
       if (entity_intact && (dim == 1 || dim == 2) && slides_along_itself(entity, G, j, T, size, &extended)) {
-        if (opt.progress) opt.progress("joint " + std::to_string(i + 1) + " slides the entity along itself");
+        step("joint " + std::to_string(i + 1) + " slides the entity along itself");
         entity = extended;
         G = j.transform(j.lo) * G;
         raw = entity_shape(entity, fit_tol, &fit_err);
@@ -1267,7 +1276,7 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
           for (auto it = b.seconds.begin(); it != b.seconds.end(); ++it)
             rep.seconds[it.key()] = rep.seconds.value(it.key(), 0.0) + it.value().get<double>();
           if (b.solid.IsNull()) {
-            if (opt.progress) opt.progress("stage " + std::to_string(n - i) + ": " + b.failure + "; built from cells instead");
+            step("stage " + std::to_string(n - i) + ": " + b.failure + "; built from cells instead");
           } else {
             fit_err = std::max(fit_err, b.fit_error);
             for (auto& v : b.varieties) stage_cands.add_variety(std::move(v));
@@ -1323,7 +1332,7 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
           }
           rep.seconds["stage_checks"] = rep.seconds.value("stage_checks", 0.0) + since(t_chk);
           if (!agree) {
-            if (opt.progress) opt.progress("stage " + std::to_string(n - i) + " failed its checks: again with every candidate");
+            step("stage " + std::to_string(n - i) + " failed its checks: again with every candidate");
             shape = sweep_stage(false, nullptr, &stage_cands);
             rep.unpruned_stages.push_back(n - i);
           }
@@ -1509,6 +1518,7 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
       rep.verdict_probe_offset = v.probe_offset_max;
       rep.verdict_difference_bound = v.difference_bound;
       rep.verdict_box_volume = v.box_volume;
+      rep.verdict_classifier = v.classifier;
       rep.seconds["verdict"] = rep.seconds.value("verdict", 0.0) + since(t_verdict);
       if (why.empty() && !v.decided()) {
         rebuild_may_help = false;
@@ -1544,7 +1554,7 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
     if (!why.empty() && redo_last && rebuild_may_help) {
       // Pruning may have left out a face that carries a strip of the boundary: the last stage
       // is built again from every candidate.
-      if (opt.progress) opt.progress("the solid failed its checks (" + why + "): last stage again with every candidate");
+      step("the solid failed its checks (" + why + "): last stage again with every candidate");
       result = redo_last();
       rep.unpruned_stages.push_back(n);
       why = check_result(result);
@@ -1615,7 +1625,7 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
     }
 
     if (opt.verify) {
-      if (opt.progress) opt.progress("Monte Carlo volume");
+      step("Monte Carlo volume");
       const auto t_mc = Clock::now();
       Eigen::AlignedBox3d box(Eigen::Vector3d(rep.bbox_min[0], rep.bbox_min[1], rep.bbox_min[2]),
                               Eigen::Vector3d(rep.bbox_max[0], rep.bbox_max[1], rep.bbox_max[2]));

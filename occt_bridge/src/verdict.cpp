@@ -11,6 +11,7 @@
 #include <Geom2d_Curve.hxx>
 #include <Geom_Surface.hxx>
 #include <ShapeAnalysis_Edge.hxx>
+#include <ShapeUpgrade_ShapeDivideClosed.hxx>
 #include <GCPnts_QuasiUniformDeflection.hxx>
 #include <Poly_Triangulation.hxx>
 #include <TopExp.hxx>
@@ -345,27 +346,37 @@ VerdictResult judge_solid(const TopoDS_Shape& solid, const Eigen::AlignedBox3d& 
   VerdictResult r;
   r.undecided_fraction = settings.undecided_fraction;
   const double deflection = settings.verdict_deflection * size;
+  // OCCT's mesher can leave a face closed on itself (a tube with a seam) without interior nodes
+  // across its closed direction, so that whole strips collapse onto the seam: the solid is meshed
+  // with such faces cut in two (the same geometry; the result itself is not changed).
+  ShapeUpgrade_ShapeDivideClosed divide(solid);
+  divide.SetNbSplitPoints(1);
+  divide.Perform();
+  const TopoDS_Shape meshed = divide.Result().IsNull() ? solid : divide.Result();
   std::string problem;
-  std::vector<Triangle> tris = triangulate(solid, deflection, &problem);
+  std::vector<Triangle> tris = triangulate(meshed, deflection, &problem);
   if (!problem.empty()) {
     // once more with a finer triangulation; then samples are classified by OCCT's classifier
-    tris = triangulate(solid, 0.25 * deflection, &problem);
+    tris = triangulate(meshed, 0.25 * deflection, &problem);
     r.classifier = problem.empty() ? "a finer triangulation" : "OCCT's solid classifier (" + problem + ")";
   }
   const bool by_mesh = problem.empty();
   const MeshIndex mesh(by_mesh ? std::move(tris) : std::vector<Triangle>());
-  const std::vector<FaceMesh> faces = face_meshes(solid);
+  const std::vector<FaceMesh> faces = face_meshes(meshed);
   r.box_volume = box.volume();
   FirstMismatch first(r.first_mismatch);
   judge_samples(solid, by_mesh ? &mesh : nullptr, box, member, tol, tol + 3 * deflection, settings, first, r);
   const double delta = settings.probe_offset * tol;
-  judge_probes(pick_probes(solid, faces, deflection, 10 * delta + deflection, settings), member, delta, deflection,
+  judge_probes(pick_probes(meshed, faces, deflection, 10 * delta + deflection, settings), member, delta, deflection,
                first, r);
   // The symmetric difference: where samples disagree, the band that was not tested and the
   // samples the membership did not decide.
   r.difference_bound =
       r.box_volume * proportion_upper_bound(r.mismatches + r.near_boundary + r.undecided, r.samples, settings.confidence);
-  BRepTools::Clean(solid);  // the triangulation was the verdict's: the result goes out without it
+  // the triangulation was the verdict's: the result goes out without it (the divided copy shares
+  // the faces that were not cut)
+  BRepTools::Clean(meshed);
+  BRepTools::Clean(solid);
   return r;
 }
 

@@ -152,15 +152,42 @@ def test_type_errors():
 
 
 def test_failed_computation_is_a_report_not_an_exception():
+    # a time limit already passed at the first step: a failed report, no exception, no solid
+    r = sc.run(json.load(open(BOX)), time_limit=1e-9)
+    rep = r["report"]
+    check(rep["status"] == "failed", rep)
+    check(rep["message"] == "stopped: the time limit of 1e-09 s was reached", rep)
+    check(r["brep"] is None, rep)
+
+
+def test_two_prismatic_joints():
     spec = sphere_extrude(1)
     spec["motion"]["joints"].append({"type": "prismatic", "direction": [1, 0, 0], "range": [0, 1]})
-    r = sc.run(spec)
-    rep = r["report"]
-    check(rep["status"] in ("ok", "failed"), rep)
-    if rep["status"] == "failed":
-        check(rep["message"] and r["brep"] is None, rep)
-    else:  # chains landed: the ball plus a unit square, by Steiner's formula
-        close(rep["volume"]["brep"], 2 + 2 * PI + 4 / 3 * PI, rel=1e-6, what="two prismatic joints")
+    rep = sc.run(spec)["report"]
+    check(rep["status"] == "ok", rep)
+    # the ball plus a unit square, by Steiner's formula
+    close(rep["volume"]["brep"], 2 + 2 * PI + 4 / 3 * PI, rel=1e-6, what="two prismatic joints")
+
+
+def test_cancel_from_another_thread():
+    import threading
+    import time
+    slow = json.load(open(os.path.join(EXAMPLES, "paper", "sec4_2_curve_three_skew_revolutes.json")))
+    out = {}
+    worker = threading.Thread(target=lambda: out.update(sc.run(slow, base_dir=EXAMPLES)))
+    start = time.monotonic()
+    worker.start()
+    time.sleep(1.0)
+    sc.cancel()
+    worker.join(60)
+    check(not worker.is_alive(), "the run did not stop within 60 s of cancel()")
+    rep = out["report"]
+    check(rep["status"] == "failed" and rep["message"] == "stopped: cancelled", rep)
+    check(out["brep"] is None, rep)
+    check(time.monotonic() - start < 30, "cancel took %.1f s" % (time.monotonic() - start))
+    # the next run is not affected
+    rep = sc.run(json.load(open(BOX)))["report"]
+    check(rep["status"] == "ok", rep)
 
 
 def test_no_temporary_file_left():

@@ -45,6 +45,10 @@ struct RunOptions {
   Settings settings;                   ///< tolerances and sampling
   /// Called with a short line at each step of a long run (the CLI prints it on a terminal).
   std::function<void(const std::string&)> progress;
+  /// Polled during the run (from several threads, so it must be thread-safe and cheap): a
+  /// non-empty answer stops the run, which then reports `failed` with "stopped: " and the answer
+  /// (a user's cancel, a time limit). OCCT's long algorithms poll it through their user break.
+  std::function<std::string()> stop;
   /// When set, receives every boundary variety of every stage.
   std::vector<Variety>* varieties = nullptr;
   /// When set, receives the candidate faces of the last stage (a compound), for display.
@@ -90,6 +94,7 @@ struct Report {
   double verdict_difference_bound = 0, verdict_box_volume = 0;
   double verdict_probe_offset = 0;  ///< the largest offset off the boundary at which a probe was decided
   std::string verdict_membership;  ///< which membership test judged
+  std::string verdict_classifier;  ///< what the samples were classified against (the solid's triangulation, ...)
   double tol_requested = 0, tol_achieved = 0;
   double seconds_total = 0;
   nlohmann::json seconds = nlohmann::json::object();

@@ -1,0 +1,48 @@
+#include "stop_request.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstdlib>
+#include <sstream>
+
+#include "sweep/error.hpp"
+
+namespace sweep::cli {
+namespace {
+
+volatile std::sig_atomic_t g_signal = 0;
+
+extern "C" void on_stop_signal(int sig) {
+  g_signal = sig;
+  std::signal(sig, SIG_DFL);  // a second one ends the process
+}
+
+}  // namespace
+
+double parse_time_limit(const std::string& text) {
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0' || !std::isfinite(v) || v <= 0)
+    throw InputError("--time-limit", "--time-limit needs a positive number of seconds (got '" + text + "')");
+  return v;
+}
+
+std::function<std::string()> stop_request(double time_limit) {
+  // a signal the parent ignores (SIGINT in a shell's background job) stays ignored
+  for (int sig : {SIGINT, SIGTERM})
+    if (std::signal(sig, on_stop_signal) == SIG_IGN) std::signal(sig, SIG_IGN);
+  const auto start = std::chrono::steady_clock::now();
+  return [start, time_limit]() -> std::string {
+    if (const int sig = g_signal) return sig == SIGINT ? "interrupted (SIGINT)" : "terminated (SIGTERM)";
+    if (time_limit > 0 &&
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > time_limit) {
+      std::ostringstream m;
+      m << "the time limit of " << time_limit << " s was reached";
+      return m.str();
+    }
+    return {};
+  };
+}
+
+}  // namespace sweep::cli
