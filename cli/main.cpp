@@ -24,8 +24,10 @@ const char* kUsage =
     "\n"
     "commands:\n"
     "  run SPEC [-o OUT] [--report R.json] [--set PATH=VALUE]... [--verify] [--time-limit S]\n"
+    "      [--no-direct-builds]\n"
     "      compute the swept solid; OUT by extension: .step/.stp, .brep, .stl (binary), .off;\n"
-    "      --time-limit stops the run after S seconds (status failed, exit 3)\n"
+    "      --time-limit stops the run after S seconds (status failed, exit 3); --no-direct-builds\n"
+    "      builds balls under screws and graph extrusions by the general pipeline too\n"
     "  check SPEC [--set PATH=VALUE]...\n"
     "      validate the spec only\n"
     "  varieties SPEC [-o V.json] [--faces F.brep|F.step] [--svg F.svg] [--set PATH=VALUE]... [--time-limit S]\n"
@@ -47,6 +49,7 @@ struct Args {
   std::vector<std::string> sets;
   bool verify = false;
   double time_limit = 0;  ///< seconds; 0: none
+  bool direct_builds = true;
 };
 
 Args parse_args(int argc, char** argv, bool allow_output) {
@@ -61,6 +64,7 @@ Args parse_args(int argc, char** argv, bool allow_output) {
     else if (allow_output && s == "--verify") a.verify = true;
     else if (allow_output && s == "--faces") a.faces = value("--faces");
     else if (allow_output && s == "--svg") a.svg = value("--svg");
+    else if (allow_output && s == "--no-direct-builds") a.direct_builds = false;
     else if (allow_output && s == "--time-limit") a.time_limit = sweep::cli::parse_time_limit(value("--time-limit"));
     else if (!s.empty() && s[0] == '-') throw sweep::InputError(s, "unknown option '" + s + "'");
     else if (a.spec.empty()) a.spec = s;
@@ -101,6 +105,7 @@ int cmd_run(int argc, char** argv) {
   sweep::Spec s = sweep::load_spec(a.spec, a.sets);
   sweep::occt::RunOptions opt;
   opt.verify = a.verify;
+  opt.direct_builds = a.direct_builds;
   if (isatty(STDERR_FILENO)) opt.progress = [](const std::string& line) { std::cerr << "sweepvol: " << line << "\n"; };
   opt.stop = sweep::cli::stop_request(a.time_limit);
   sweep::occt::RunResult r = sweep::occt::run_sweep(s, opt);

@@ -70,13 +70,13 @@ sweep::occt::RunResult check_chain_against_image(const std::string& example, dou
   return r;
 }
 
-void check_case(const std::string& path) {
-  CAPTURE(path);
+void check_case(const std::string& path, const sweep::occt::RunOptions& opt = {}) {
+  CAPTURE(path, opt.direct_builds);
   sweep::Spec spec = sweep::load_spec(path);
   REQUIRE(spec.json.contains("_expected_volume"));
   const double expected = spec.json["_expected_volume"].get<double>();
   const double rel = spec.json.value("_rel_tol", 1e-6);
-  auto r = sweep::occt::run_sweep(spec);
+  auto r = sweep::occt::run_sweep(spec, opt);
   CAPTURE(r.report.to_json().dump());
   CHECK(r.report.status == "ok");
   CHECK(r.report.valid);
@@ -111,6 +111,22 @@ TEST_CASE("Examples: every example with an expected volume reproduces it") {
     if (f.find("brep_box_hole") != std::string::npos) continue;  // needs its STEP file: see below
     SECTION(f) { check_case(f); }
   }
+}
+
+TEST_CASE("Cases and examples of one joint: the general pipeline on its own (direct builds off)") {
+  auto files = sweep_test::json_files(SWEEP_SHARED_DIR "/cases");
+  if (files.empty()) files = sweep_test::json_files(SWEEP_SOURCE_DIR "/examples/cases");
+  for (const auto& f : sweep_test::json_files(SWEEP_SOURCE_DIR "/examples")) files.push_back(f);
+  sweep::occt::RunOptions general;
+  general.direct_builds = false;
+  int single = 0;
+  for (const auto& f : files) {
+    if (f.find("brep_box_hole") != std::string::npos) continue;  // needs its STEP file
+    if (sweep::load_spec(f).motion.motion.dof() != 1) continue;
+    ++single;
+    SECTION(f) { check_case(f, general); }
+  }
+  CHECK(single >= 10);
 }
 
 TEST_CASE("Sweep: STEP written and read back keeps the volume, runs are identical") {

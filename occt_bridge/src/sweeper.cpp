@@ -439,7 +439,9 @@ PointTestMaker trajectory_membership(const TopoDS_Shape& body, const ScrewJoint&
 /// q in [0, T]. `sd`, when given, is the entity's signed distance, or `pe` its parametric map, and
 /// `sd_motion` the motion that carries the entity to this stage's swept set (for the membership
 /// test independent of the B-rep). With `prune`, candidate faces found inside the swept set at
-/// sampled points are left out of the arrangement; `pruned` receives how many of how many.
+/// sampled points are left out of the arrangement; `pruned` receives how many of how many. With
+/// `direct_builds`, the shapes that have a direct construction (balls under screws, graph
+/// extrusions) are built so first.
 struct PruneCount {
   int candidates = 0;  ///< candidate faces before pruning
   int dropped = 0;     ///< left out as internal (some may be restored later)
@@ -447,7 +449,7 @@ struct PruneCount {
 TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j, double T, const SignedDistance* sd,
                          const ParametricEntity* pe, const Motion& sd_motion, double esize, double size, double tol, double fit_tol,
                          double& fit_err, Report& rep, int stage, int joint_no, Candidates* cand_out, bool prune,
-                         PruneCount* pruned) {
+                         PruneCount* pruned, bool direct_builds) {
   Seconds sec{rep.seconds};
   auto stage_fail = [](const std::string& m) -> TopoDS_Shape { throw ComputeError(m); };
   const bool full_turn = j.type == JointType::Revolute && T >= 2 * M_PI - 1e-12;
@@ -469,7 +471,7 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
   };
   // A ball whose centre's helix has a reach above its radius sweeps a tube closed by two half
   // balls: built directly, without an arrangement, when the build is valid and closed.
-  if (dim == 3 && j.type == JointType::Helical && j.pitch != 0) {
+  if (direct_builds && dim == 3 && j.type == JointType::Helical && j.pitch != 0) {
     double err = fit_err;
     std::vector<TopoDS_Face> fs;
     std::vector<int> roles;
@@ -492,7 +494,7 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
   }
   // A face translated along a direction in which it is a graph: the face, its translate and the
   // sweep of its boundary, sewn without an arrangement, when the result is valid and closed.
-  if (dim == 2 && j.type == JointType::Prismatic) {
+  if (direct_builds && dim == 2 && j.type == JointType::Prismatic) {
     TopExp_Explorer fx(body, TopAbs_FACE);
     const TopoDS_Face face = fx.More() ? TopoDS::Face(fx.Current()) : TopoDS_Face();
     if (fx.More()) fx.Next();
@@ -1308,7 +1310,7 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
           rc.erase(std::remove_if(rc.begin(), rc.end(), [&](const auto& r) { return r.first == n - i; }), rc.end());
           *out = Candidates();
           return solid_sweep(body, dim, j, T, use_sd ? sd.get() : nullptr, spe, sd_motion, esize, size, tol, fit_tol,
-                             fit_err, rep, n - i, i + 1, out, prune, pruned);
+                             fit_err, rep, n - i, i + 1, out, prune, pruned, opt.direct_builds);
         };
         PruneCount pruned;
         shape = sweep_stage(true, &pruned, &stage_cands);

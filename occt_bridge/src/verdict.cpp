@@ -127,11 +127,20 @@ std::vector<Triangle> triangulate(const TopoDS_Shape& shape, double deflection, 
   BRepMesh_IncrementalMesh mesh(shape, deflection, false, 0.5, true);
   std::vector<Triangle> out;
   const std::vector<FaceMesh> faces = face_meshes(shape);
-  int nfaces = 0;
-  for (TopExp_Explorer ex(shape, TopAbs_FACE); ex.More(); ex.Next()) ++nfaces;
   if (problem) {
+    // a face without triangles is a hole in the mesh, unless it has no area
     problem->clear();
-    if (int(faces.size()) != nfaces) *problem = std::to_string(nfaces - int(faces.size())) + " faces have no triangulation";
+    std::vector<double> areas;
+    double total = 0;
+    int missing = 0;
+    for (TopExp_Explorer ex(shape, TopAbs_FACE); ex.More(); ex.Next()) {
+      TopLoc_Location loc;
+      if (!BRep_Tool::Triangulation(TopoDS::Face(ex.Current()), loc).IsNull()) continue;
+      areas.push_back(std::abs(face_area(TopoDS::Face(ex.Current()))));
+    }
+    for (const auto& fm : faces) total += fm.area;
+    for (double a : areas) missing += a > 1e-9 * total;
+    if (missing > 0) *problem = std::to_string(missing) + " faces have no triangulation";
   }
   Bnd_Box b;
   for (const auto& fm : faces) {
@@ -347,19 +356,28 @@ VerdictResult judge_solid(const TopoDS_Shape& solid, const Eigen::AlignedBox3d& 
   r.undecided_fraction = settings.undecided_fraction;
   const double deflection = settings.verdict_deflection * size;
   // OCCT's mesher can leave a face closed on itself (a tube with a seam) without interior nodes
-  // across its closed direction, so that whole strips collapse onto the seam: the solid is meshed
-  // with such faces cut in two (the same geometry; the result itself is not changed).
-  ShapeUpgrade_ShapeDivideClosed divide(solid);
-  divide.SetNbSplitPoints(1);
-  divide.Perform();
-  const TopoDS_Shape meshed = divide.Result().IsNull() ? solid : divide.Result();
+  // across its closed direction, so that whole strips collapse onto the seam; a copy with such
+  // faces cut in two (the same geometry; the result itself is not changed) meshes right.
+  // The solid is meshed as it is, then (when that mesh fails its checks) as such a copy, then both
+  // finer; when every mesh fails, samples are classified by OCCT's classifier.
+  const auto divided = [&] {
+    ShapeUpgrade_ShapeDivideClosed divide(solid);
+    divide.SetNbSplitPoints(1);
+    divide.Perform();
+    return divide.Result().IsNull() ? solid : divide.Result();
+  };
+  TopoDS_Shape meshed = solid;
   std::string problem;
   std::vector<Triangle> tris = triangulate(meshed, deflection, &problem);
-  if (!problem.empty()) {
-    // once more with a finer triangulation; then samples are classified by OCCT's classifier
-    tris = triangulate(meshed, 0.25 * deflection, &problem);
-    r.classifier = problem.empty() ? "a finer triangulation" : "OCCT's solid classifier (" + problem + ")";
+  const std::string first_problem = problem;
+  for (int attempt = 1; attempt < 4 && !problem.empty(); ++attempt) {
+    BRepTools::Clean(meshed);
+    meshed = attempt % 2 ? divided() : solid;
+    tris = triangulate(meshed, (attempt < 2 ? 1.0 : 0.25) * deflection, &problem);
+    r.classifier = std::string(attempt < 2 ? "the triangulation" : "a finer triangulation") +
+                   (attempt % 2 ? " with closed faces divided" : "");
   }
+  if (!problem.empty()) r.classifier = "OCCT's solid classifier (" + first_problem + "; " + problem + ")";
   const bool by_mesh = problem.empty();
   const MeshIndex mesh(by_mesh ? std::move(tris) : std::vector<Triangle>());
   const std::vector<FaceMesh> faces = face_meshes(meshed);

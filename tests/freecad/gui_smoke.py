@@ -87,6 +87,7 @@ def steps():
     from sweep_freecad.gui.commands import check_text
     text = check_text(obj, verify(obj, samples=20000))
     check("Monte Carlo" in text, text)
+    check("verdict:     0 of 4096 samples" in text, text)
     FreeCAD.Console.PrintMessage(text + "\n")
 
     # a picture: the sweep, and the box it came from

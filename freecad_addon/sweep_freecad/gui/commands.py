@@ -127,7 +127,8 @@ class ShowVarieties(_Command):
 class CheckSweep(_Command):
     def GetResources(self):
         return {"Pixmap": paths.icon("Sweep_Check"), "MenuText": "Check volumes",
-                "ToolTip": "Show the volume triad of the selected sweeps: B-rep, divergence theorem and Monte Carlo"}
+                "ToolTip": "Show the volume triad of the selected sweeps (B-rep, divergence theorem, Monte Carlo) "
+                           "and the verdict that decided their status"}
 
     def IsActive(self):
         return bool(_selected_sweeps())
@@ -155,6 +156,14 @@ def check_text(obj, report):
         obj.Label, report.get("status"), v.get("brep", 0.0), v.get("divergence", 0.0))
     if "monte_carlo" in v:
         text += "\n  Monte Carlo: %.6g +- %.2g" % (v["monte_carlo"], v.get("monte_carlo_stderr", 0.0))
+    verdict = report.get("verify")
+    if verdict:
+        # the verdict that decided the status: the solid against a membership test that does not use it
+        text += ("\n  verdict:     %d of %d samples and %d of %d boundary probes disagree with %s;"
+                 "\n               symmetric difference below %.3g (95 %%)") % (
+            verdict.get("mismatches", 0), verdict.get("samples", 0), verdict.get("probe_mismatches", 0),
+            verdict.get("probes", 0), verdict.get("membership", "the independent membership"),
+            verdict.get("difference_bound", 0.0))
     if report.get("message"):
         text += "\n  " + report["message"]
     return text
