@@ -12,6 +12,8 @@
 #include <Geom_Surface.hxx>
 #include <ShapeAnalysis_Edge.hxx>
 #include <ShapeUpgrade_ShapeDivideClosed.hxx>
+#include <Standard_ErrorHandler.hxx>
+#include <Standard_Failure.hxx>
 #include <GCPnts_QuasiUniformDeflection.hxx>
 #include <Poly_Triangulation.hxx>
 #include <TopExp.hxx>
@@ -359,23 +361,33 @@ VerdictResult judge_solid(const TopoDS_Shape& solid, const Eigen::AlignedBox3d& 
   // across its closed direction, so that whole strips collapse onto the seam; a copy with such
   // faces cut in two (the same geometry; the result itself is not changed) meshes right.
   // The solid is meshed as it is, then (when that mesh fails its checks) as such a copy, then both
-  // finer; when every mesh fails, samples are classified by OCCT's classifier.
-  const auto divided = [&] {
-    ShapeUpgrade_ShapeDivideClosed divide(solid);
-    divide.SetNbSplitPoints(1);
-    divide.Perform();
-    return divide.Result().IsNull() ? solid : divide.Result();
-  };
-  TopoDS_Shape meshed = solid;
-  std::string problem;
-  std::vector<Triangle> tris = triangulate(meshed, deflection, &problem);
-  const std::string first_problem = problem;
-  for (int attempt = 1; attempt < 4 && !problem.empty(); ++attempt) {
-    BRepTools::Clean(meshed);
-    meshed = attempt % 2 ? divided() : solid;
-    tris = triangulate(meshed, (attempt < 2 ? 1.0 : 0.25) * deflection, &problem);
+  // finer; when every mesh fails (or OCCT throws), samples are classified by OCCT's classifier.
+  // (Meshing the copy first costs the overlapping springs a third more: cutting their trimmed
+  // faces can throw.)
+  TopoDS_Shape meshed;
+  std::string problem, first_problem;
+  std::vector<Triangle> tris;
+  for (int attempt = 0; attempt < 4 && (attempt == 0 || !problem.empty()); ++attempt) {
+    const bool divide = attempt % 2 == 1;
     r.classifier = std::string(attempt < 2 ? "the triangulation" : "a finer triangulation") +
-                   (attempt % 2 ? " with closed faces divided" : "");
+                   (divide ? " (closed faces divided)" : "");
+    if (!meshed.IsNull()) BRepTools::Clean(meshed);
+    meshed = solid;
+    try {
+      OCC_CATCH_SIGNALS
+      if (divide) {
+        ShapeUpgrade_ShapeDivideClosed divider(solid);
+        divider.SetNbSplitPoints(1);
+        divider.Perform();
+        if (!divider.Result().IsNull()) meshed = divider.Result();
+      }
+      tris = triangulate(meshed, (attempt < 2 ? 1.0 : 0.25) * deflection, &problem);
+    } catch (const Standard_Failure& f) {
+      problem = std::string("OCCT failed to mesh it: ") + (f.GetMessageString() ? f.GetMessageString() : "");
+      meshed = solid;
+      tris.clear();
+    }
+    if (attempt == 0) first_problem = problem;
   }
   if (!problem.empty()) r.classifier = "OCCT's solid classifier (" + first_problem + "; " + problem + ")";
   const bool by_mesh = problem.empty();

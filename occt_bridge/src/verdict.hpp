@@ -32,7 +32,7 @@ struct VerdictResult {
   /// the solid and the swept set, from the box samples (near-boundary ones counted as differing)
   double difference_bound = 0;
   std::string first_mismatch;  ///< where, for the message
-  std::string classifier = "the triangulation";  ///< what the box samples were classified against
+  std::string classifier;  ///< what the box samples were classified against
   double undecided_fraction = 0.1;  ///< the most of the samples that may be undecided
   /// Undecided probes are reported and weaken nothing else: the samples decide.
   bool decided() const { return undecided <= undecided_fraction * samples; }
