@@ -1,11 +1,10 @@
 #include "stop_request.hpp"
 
-#include <chrono>
 #include <cmath>
 #include <csignal>
 #include <cstdlib>
-#include <sstream>
 
+#include "occt_bridge/sweeper.hpp"
 #include "sweep/error.hpp"
 
 namespace sweep::cli {
@@ -32,17 +31,10 @@ std::function<std::string()> stop_request(double time_limit) {
   // a signal the parent ignores (SIGINT in a shell's background job) stays ignored
   for (int sig : {SIGINT, SIGTERM})
     if (std::signal(sig, on_stop_signal) == SIG_IGN) std::signal(sig, SIG_IGN);
-  const auto start = std::chrono::steady_clock::now();
-  return [start, time_limit]() -> std::string {
+  return sweep::occt::stop_after(time_limit, []() -> std::string {
     if (const int sig = g_signal) return sig == SIGINT ? "interrupted (SIGINT)" : "terminated (SIGTERM)";
-    if (time_limit > 0 &&
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > time_limit) {
-      std::ostringstream m;
-      m << "the time limit of " << time_limit << " s was reached";
-      return m.str();
-    }
     return {};
-  };
+  });
 }
 
 }  // namespace sweep::cli

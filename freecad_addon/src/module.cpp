@@ -9,7 +9,6 @@
 #include <pybind11/stl.h>
 
 #include <atomic>
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -38,16 +37,7 @@ std::atomic<bool> g_cancel{false};
 /// The stop request of one run: cancel() from another thread, or the time limit (seconds, 0: none).
 std::function<std::string()> stop_request(double time_limit) {
   g_cancel = false;
-  const auto start = std::chrono::steady_clock::now();
-  return [start, time_limit]() -> std::string {
-    if (g_cancel) return "cancelled";
-    if (time_limit > 0 && std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > time_limit) {
-      char text[80];
-      std::snprintf(text, sizeof text, "the time limit of %g s was reached", time_limit);
-      return text;
-    }
-    return {};
-  };
+  return sweep::occt::stop_after(time_limit, [] { return std::string(g_cancel ? "cancelled" : ""); });
 }
 
 /// Raises InputError with the attributes `pointer`, `line` and `column` set.

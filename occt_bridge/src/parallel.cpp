@@ -25,7 +25,7 @@ void parallel_for(std::size_t n, const std::function<std::function<void(std::siz
   std::atomic<std::size_t> next{0};
   std::exception_ptr error;
   std::mutex error_mutex;
-  const void* request = current_stop();
+  StopIndicator* const request = current_stop();
   // Each worker takes the caller's stop request, and a signal inside OCCT becomes a
   // Standard_Failure that the caller rethrows (as on its own thread).
   auto run = [&] {

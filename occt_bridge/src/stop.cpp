@@ -3,10 +3,13 @@
 
 #include <Message_ProgressIndicator.hxx>
 #include <atomic>
+#include <chrono>
+#include <cstdio>
 #include <mutex>
 
+#include "occt_bridge/sweeper.hpp"
+
 namespace sweep::occt {
-namespace {
 
 /// Polls the request; once it has fired, keeps its reason (the request may not fire twice).
 class StopIndicator : public Message_ProgressIndicator {
@@ -33,8 +36,8 @@ class StopIndicator : public Message_ProgressIndicator {
   std::string reason_;
 };
 
+namespace {
 thread_local StopIndicator* t_request = nullptr;
-
 }  // namespace
 
 StopScope::StopScope(std::function<std::string()> stop) : outer_(t_request) {
@@ -44,7 +47,7 @@ StopScope::StopScope(std::function<std::string()> stop) : outer_(t_request) {
   t_request = ind.get();
 }
 
-StopScope::~StopScope() { t_request = static_cast<StopIndicator*>(const_cast<void*>(outer_)); }
+StopScope::~StopScope() { t_request = outer_; }
 
 void check_stop() {
   if (!t_request) return;
@@ -54,11 +57,23 @@ void check_stop() {
 
 Message_ProgressRange stop_range() { return t_request ? t_request->Start() : Message_ProgressRange(); }
 
-const void* current_stop() { return t_request; }
+StopIndicator* current_stop() { return t_request; }
 
-AdoptStop::AdoptStop(const void* request) : outer_(t_request) {
-  t_request = static_cast<StopIndicator*>(const_cast<void*>(request));
+AdoptStop::AdoptStop(StopIndicator* request) : outer_(t_request) { t_request = request; }
+AdoptStop::~AdoptStop() { t_request = outer_; }
+
+std::function<std::string()> stop_after(double seconds, std::function<std::string()> also) {
+  const auto start = std::chrono::steady_clock::now();
+  return [start, seconds, also = std::move(also)]() -> std::string {
+    if (also)
+      if (std::string why = also(); !why.empty()) return why;
+    if (seconds > 0 && std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > seconds) {
+      char text[80];
+      std::snprintf(text, sizeof text, "the time limit of %g s was reached", seconds);
+      return text;
+    }
+    return {};
+  };
 }
-AdoptStop::~AdoptStop() { t_request = static_cast<StopIndicator*>(const_cast<void*>(outer_)); }
 
 }  // namespace sweep::occt

@@ -17,6 +17,9 @@ class Stopped : public ComputeError {
   explicit Stopped(const std::string& reason) : ComputeError("stopped: " + reason) {}
 };
 
+/// A stop request as OCCT's progress indicator (stop.cpp).
+class StopIndicator;
+
 /// While alive, makes `stop` the stop request of this thread and of the workers parallel_for
 /// starts from it (nested scopes restore the outer request).
 class StopScope {
@@ -28,7 +31,7 @@ class StopScope {
 
  private:
   Handle(Standard_Transient) mine_;
-  const void* outer_;
+  StopIndicator* outer_;
 };
 
 /// Throws Stopped when this thread's stop request fires (cheap: call it once per piece of work).
@@ -38,17 +41,17 @@ void check_stop();
 Message_ProgressRange stop_range();
 
 /// The request in force on this thread, to hand to another thread (parallel_for does this).
-const void* current_stop();
+StopIndicator* current_stop();
 /// Makes `request` (from current_stop()) this thread's request while alive.
 class AdoptStop {
  public:
-  explicit AdoptStop(const void* request);
+  explicit AdoptStop(StopIndicator* request);
   ~AdoptStop();
   AdoptStop(const AdoptStop&) = delete;
   AdoptStop& operator=(const AdoptStop&) = delete;
 
  private:
-  const void* outer_;
+  StopIndicator* outer_;
 };
 
 }  // namespace sweep::occt

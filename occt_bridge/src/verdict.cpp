@@ -132,16 +132,14 @@ std::vector<Triangle> triangulate(const TopoDS_Shape& shape, double deflection, 
   if (problem) {
     // a face without triangles is a hole in the mesh, unless it has no area
     problem->clear();
-    std::vector<double> areas;
     double total = 0;
+    for (const auto& fm : faces) total += fm.area;
     int missing = 0;
     for (TopExp_Explorer ex(shape, TopAbs_FACE); ex.More(); ex.Next()) {
+      const TopoDS_Face& f = TopoDS::Face(ex.Current());
       TopLoc_Location loc;
-      if (!BRep_Tool::Triangulation(TopoDS::Face(ex.Current()), loc).IsNull()) continue;
-      areas.push_back(std::abs(face_area(TopoDS::Face(ex.Current()))));
+      missing += BRep_Tool::Triangulation(f, loc).IsNull() && std::abs(face_area(f)) > 1e-9 * total;
     }
-    for (const auto& fm : faces) total += fm.area;
-    for (double a : areas) missing += a > 1e-9 * total;
     if (missing > 0) *problem = std::to_string(missing) + " faces have no triangulation";
   }
   Bnd_Box b;

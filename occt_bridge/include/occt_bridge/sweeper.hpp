@@ -58,6 +58,10 @@ struct RunOptions {
   std::vector<int>* variety_face_ids = nullptr;
 };
 
+/// A stop request for RunOptions::stop: `also`'s answer when it gives one, else "the time limit of
+/// S s was reached" once `seconds` (> 0; 0: no limit) have passed since this call.
+std::function<std::string()> stop_after(double seconds, std::function<std::string()> also = {});
+
 /// Report v1 (SPEC.md), plus `dimension` (3 solid, 2 surface, 1 curve, 0 point).
 struct Report {
   std::string status = "failed";
