@@ -430,7 +430,8 @@ BoundarySweep boundary_sweep(const TopoDS_Shape& body, const ScrewJoint& j, doub
       sec.Approximation(true);
       sec.ComputePCurveOn1(true);
       sec.ComputePCurveOn2(true);
-      sec.Build();
+      sec.Build(stop_range());
+      check_stop();
       if (!sec.IsDone() || sec.HasErrors()) {
         pair_failed[k] = 1;
         return;
@@ -475,7 +476,8 @@ BoundarySweep boundary_sweep(const TopoDS_Shape& body, const ScrewJoint& j, doub
       sp.SetTools(tl);
       sp.SetNonDestructive(true);
       sp.SetFuzzyValue(eps);
-      sp.Build();
+      sp.Build(stop_range());
+      check_stop();
       if (!sp.IsDone() || sp.HasErrors()) {
         split_failed[i] = 1;
         return;

@@ -59,7 +59,14 @@ Message_ProgressRange stop_range() { return t_request ? t_request->Start() : Mes
 
 StopIndicator* current_stop() { return t_request; }
 
-AdoptStop::AdoptStop(StopIndicator* request) : outer_(t_request) { t_request = request; }
+AdoptStop::AdoptStop(StopIndicator* request) : outer_(t_request) {
+  if (!request) return;
+  // an indicator of this thread's own that asks the shared request: OCCT's progress ranges of
+  // one indicator must not be started from two threads at once
+  Handle(StopIndicator) ind = new StopIndicator([request]() { return request->reason(); });
+  mine_ = ind;
+  t_request = ind.get();
+}
 AdoptStop::~AdoptStop() { t_request = outer_; }
 
 std::function<std::string()> stop_after(double seconds, std::function<std::string()> also) {

@@ -42,7 +42,8 @@ Message_ProgressRange stop_range();
 
 /// The request in force on this thread, to hand to another thread (parallel_for does this).
 StopIndicator* current_stop();
-/// Makes `request` (from current_stop()) this thread's request while alive.
+/// Makes `request` (from current_stop()) this thread's request while alive, through an indicator
+/// of this thread's own, so that stop_range() may be called on any thread.
 class AdoptStop {
  public:
   explicit AdoptStop(StopIndicator* request);
@@ -51,6 +52,7 @@ class AdoptStop {
   AdoptStop& operator=(const AdoptStop&) = delete;
 
  private:
+  Handle(Standard_Transient) mine_;
   StopIndicator* outer_;
 };
 

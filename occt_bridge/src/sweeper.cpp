@@ -640,7 +640,8 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
       splitter.SetTools(tools);
       splitter.SetRunParallel(true);
       splitter.SetFuzzyValue(1e-9 * esize);
-      splitter.Build();
+      splitter.Build(stop_range());
+      check_stop();
       if (splitter.IsDone() && !splitter.HasErrors()) {
         // The pieces must cover the face (a grazing curve on the face's border can leave the
         // splitter with nothing); otherwise the face goes on whole.
@@ -917,7 +918,8 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
       mv.SetRunParallel(true);
       mv.SetFuzzyValue(fuzzy * factor);
       mv.SetNonDestructive(true);
-      mv.Perform();
+      mv.Perform(stop_range());
+      check_stop();
       if (!mv.HasErrors() && TopExp_Explorer(mv.Shape(), TopAbs_SOLID).More()) break;
     }
     if (const char* dump = std::getenv("SWEEP_DUMP_CANDIDATES")) {  // diagnostics: the arrangement's input
@@ -996,7 +998,8 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
       fuse.SetTools(t);
       fuse.SetRunParallel(true);
       fuse.SetGlue(BOPAlgo_GlueShift);
-      fuse.Build();
+      fuse.Build(stop_range());
+      check_stop();
       if (!fuse.IsDone() || fuse.HasErrors()) return stage_fail("the union of the swept cells failed");
       result = fuse.Shape();
     }
@@ -1375,7 +1378,8 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
           gf.SetRunParallel(true);
           gf.SetFuzzyValue(1e-9 * size);
           gf.SetNonDestructive(true);
-          gf.Build();
+          gf.Build(stop_range());
+          check_stop();
           if (gf.IsDone() && !gf.HasErrors()) {
             TopTools_IndexedMapOfShape unique;
             TopExp::MapShapes(gf.Shape(), TopAbs_FACE, unique);
