@@ -7,6 +7,7 @@
 #include <BRepBuilderAPI_Transform.hxx>
 #include <BRepGProp.hxx>
 #include <GProp_GProps.hxx>
+#include <TopExp_Explorer.hxx>
 #include <TopTools_ListOfShape.hxx>
 
 #include <chrono>
@@ -35,6 +36,10 @@ int run(const std::string& path, int n) {
   const sweep::ScrewJoint& j = motion.joints[0];
   double fit_error = 0;
   const TopoDS_Shape body = placed(sweep::occt::entity_shape(spec.entity, 1e-7, &fit_error), motion.home);
+  if (!TopExp_Explorer(body, TopAbs_SOLID).More()) {
+    std::cerr << "fuse_copies: " << path << ": the entity is not a solid\n";
+    return 2;
+  }
 
   const auto start = std::chrono::steady_clock::now();
   TopTools_ListOfShape first, others;

@@ -1068,6 +1068,19 @@ void occt_volume_of_faces(const std::vector<TopoDS_Face>& faces, const gp_Pnt& P
   }
 }
 
+/// Closed: every shell of every solid has each edge used twice, with opposite orientations.
+/// Checked solid by solid, so solids that touch along an edge do not count as open.
+bool closed_solids(const TopoDS_Shape& shape) {
+  int nsolids = 0;
+  for (TopExp_Explorer ex(shape, TopAbs_SOLID); ex.More(); ex.Next()) {
+    ++nsolids;
+    ShapeAnalysis_Shell sas;
+    sas.LoadShells(ex.Current());
+    if (sas.CheckOrientedShells(ex.Current(), true) || sas.HasFreeEdges()) return false;
+  }
+  return nsolids > 0;
+}
+
 SolidChecks check_solid(const TopoDS_Shape& result) {
   SolidChecks c;
   // OCCT's volume integral is a sum over the faces: they are shared out between two parts of
@@ -1111,18 +1124,7 @@ SolidChecks check_solid(const TopoDS_Shape& result) {
         c.box = shape_box(result);
       } else {
         c.valid = BRepCheck_Analyzer(result).IsValid();
-        // Closed: every shell of every solid has each edge used twice, with opposite
-        // orientations. Checked solid by solid, so solids that touch along an edge do not count
-        // as open.
-        int nsolids = 0;
-        c.closed = true;
-        for (TopExp_Explorer ex(result, TopAbs_SOLID); ex.More(); ex.Next()) {
-          ++nsolids;
-          ShapeAnalysis_Shell sas;
-          sas.LoadShells(ex.Current());
-          if (sas.CheckOrientedShells(ex.Current(), true) || sas.HasFreeEdges()) c.closed = false;
-        }
-        c.closed = c.closed && nsolids > 0;
+        c.closed = closed_solids(result);
       }
     };
   });
@@ -1280,6 +1282,12 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
           BoundarySweep b = boundary_sweep(body, j, T, stage_member, size, tol, opt.settings, n - i, i + 1);
           for (auto it = b.seconds.begin(); it != b.seconds.end(); ++it)
             rep.seconds[it.key()] = rep.seconds.value(it.key(), 0.0) + it.value().get<double>();
+          // a boundary that left a piece out (a sliver whose crossing with an end copy no
+          // section found) does not close: the arrangement of cells is made instead
+          if (!b.solid.IsNull() && !closed_solids(b.solid) && !closed_solids(healed(b.solid))) {
+            b.failure = "the pieces of its sweep boundary do not close";
+            b.solid.Nullify();
+          }
           if (b.solid.IsNull()) {
             step("stage " + std::to_string(n - i) + ": " + b.failure + "; built from cells instead");
           } else {
