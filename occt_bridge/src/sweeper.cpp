@@ -15,6 +15,7 @@
 #include <BRepLib.hxx>
 #include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
 #include <BRepClass3d_SolidClassifier.hxx>
+#include <IntCurvesFace_ShapeIntersector.hxx>
 #include <BRepGProp.hxx>
 #include <BRepGProp_Domain.hxx>
 #include <BRepGProp_Face.hxx>
@@ -139,6 +140,41 @@ bool unable_to_orient(const BOPAlgo_MakerVolume& mv) {
 }
 
 /// A point inside the solid cell, a small step inward from one of its faces.
+/// A point inside a cell too thin for fixed offsets: from points of its faces a ray goes inward
+/// along the normal, and the middle of its way to the next face the ray meets is taken when OCCT's
+/// classifier finds it inside.
+bool thin_cell_point(const TopoDS_Solid& cell, double size, Eigen::Vector3d* out) {
+  IntCurvesFace_ShapeIntersector hits;
+  hits.Load(cell, 1e-9 * size);
+  for (TopExp_Explorer ex(cell, TopAbs_FACE); ex.More(); ex.Next()) {
+    const TopoDS_Face f = TopoDS::Face(ex.Current());
+    double u0, u1, v0, v1;
+    BRepTools::UVBounds(f, u0, u1, v0, v1);
+    BRepTopAdaptor_FClass2d fc(f, 1e-9);
+    const BRepAdaptor_Surface S(f);
+    for (double a : {0.5, 0.29, 0.71, 0.13, 0.87})
+      for (double b : {0.5, 0.31, 0.69, 0.17, 0.83}) {
+        const gp_Pnt2d uv(u0 + a * (u1 - u0), v0 + b * (v1 - v0));
+        if (fc.Perform(uv) != TopAbs_IN) continue;
+        BRepLProp_SLProps props(S, uv.X(), uv.Y(), 1, 1e-9);
+        if (!props.IsNormalDefined()) continue;
+        gp_Dir n = props.Normal();
+        if (f.Orientation() != TopAbs_REVERSED) n.Reverse();  // inward
+        const gp_Pnt p = props.Value();
+        hits.Perform(gp_Lin(p, n), 1e-7 * size, 2 * size);
+        if (!hits.IsDone() || hits.NbPnt() == 0) continue;
+        double w = 2 * size;
+        for (int k = 1; k <= hits.NbPnt(); ++k) w = std::min(w, hits.WParameter(k));
+        const gp_Pnt mid = p.Translated(gp_Vec(n) * (0.5 * w));
+        if (BRepClass3d_SolidClassifier(cell, mid, 1e-10 * size).State() == TopAbs_IN) {
+          *out = to_eigen(mid);
+          return true;
+        }
+      }
+  }
+  return false;
+}
+
 bool interior_point(const TopoDS_Solid& cell, double size, Eigen::Vector3d* out) {
   for (double frac : {1e-3, 1e-4, 1e-5}) {
     for (TopExp_Explorer ex(cell, TopAbs_FACE); ex.More(); ex.Next()) {
@@ -165,7 +201,7 @@ bool interior_point(const TopoDS_Solid& cell, double size, Eigen::Vector3d* out)
       }
     }
   }
-  return false;
+  return thin_cell_point(cell, size, out);
 }
 
 /// The number of connected groups among the solids, two solids being connected when they come
@@ -908,6 +944,7 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
   const double fuzzy = std::max(1e-7 * size, 10 * fit_err);
   BOPAlgo_MakerVolume mv;
   TopoDS_Shape result;
+  std::string arrangement_error;
   for (int round = 0;; ++round) {
     const auto t_arr = Clock::now();
     TopTools_ListOfShape args;
@@ -929,16 +966,20 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
       for (const auto& f : cand.faces) bb.Add(comp, f);
       BRepTools::Write(comp, dump);
     }
+    // Failing to build the cells after splitting the faces (OCCT's solid builder) leaves the split
+    // faces, from which the solid is built as when it cannot orient shells.
+    arrangement_error.clear();
     if (mv.HasErrors()) {
       std::ostringstream why;
       mv.DumpErrors(why);
-      return stage_fail("the arrangement of the candidate faces failed: " + why.str());
+      arrangement_error = "the arrangement of the candidate faces failed: " + why.str();
+      if (mv.Images().IsEmpty()) return stage_fail(arrangement_error);
     }
     sec["arrangement"] += since(t_arr);
 
     const auto t_bnd = Clock::now();
     std::vector<TopoDS_Edge> free_edges;
-    if (unable_to_orient(mv) || !TopExp_Explorer(mv.Shape(), TopAbs_SOLID).More()) {
+    if (mv.HasErrors() || unable_to_orient(mv) || !TopExp_Explorer(mv.Shape(), TopAbs_SOLID).More()) {
       TopTools_IndexedMapOfShape split;
       for (const auto& f : cand.faces) {
         if (mv.Images().IsBound(f))
@@ -954,11 +995,15 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
         result = bounded;
       }
     }
-    const int restored = result.IsNull() && round < 3 && !free_edges.empty() ? restore_near(free_edges) : 0;
+    // (not after a failed arrangement: OCCT's solid builder can then run for many minutes without
+    // polling the stop request)
+    const int restored =
+        result.IsNull() && round < 3 && !free_edges.empty() && arrangement_error.empty() ? restore_near(free_edges) : 0;
     sec["classification"] += since(t_bnd);
     if (restored == 0) break;
     rep.restored_candidates.push_back({stage, restored});
   }
+  if (result.IsNull() && !arrangement_error.empty()) return stage_fail(arrangement_error);
   const auto t_cls = Clock::now();
 
   // Otherwise: classify the cells.
