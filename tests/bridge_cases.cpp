@@ -13,6 +13,7 @@
 #include "sweep/membership.hpp"
 #include "sweep/spec.hpp"
 #include "util/cases.hpp"
+#include "util/random_one_joint.hpp"
 
 namespace {
 
@@ -422,4 +423,38 @@ TEST_CASE("Paper 4.2: a curve swept by three skew revolute joints, point by poin
   CHECK(r.report.healed_stages == std::vector<int>{3});
   REQUIRE(r.report.restored_candidates.size() == 1);
   CHECK(r.report.restored_candidates[0].first == 3);
+}
+
+TEST_CASE("Chains: two revolutes about parallel or shared axes including full turns") {
+  // A box [2, 3] x [0, 1] x [0, 1] under two revolutes about z, through (0, 0) and (1, 0) or both
+  // through the origin. Parallel, full turns: the inner one sweeps the annulus about (1, 0) with
+  // radii 1 and sqrt 5, the outer one the disk of radius 1 + sqrt 5. Shared axis: one revolute
+  // over the summed range (6 pi once it reaches a full turn).
+  auto spec = [](double inner_x, double range) {
+    char text[600];
+    std::snprintf(text, sizeof text,
+                  R"({"sweep": 1, "angles": "deg", "entity": {"kind": "box", "min": [2, 0, 0], "max": [3, 1, 1]},
+                     "motion": {"kind": "axes", "joints": [
+                       {"type": "revolute", "point": [0, 0, 0], "direction": [0, 0, 1], "range": [0, %g]},
+                       {"type": "revolute", "point": [%g, 0, 0], "direction": [0, 0, 1], "range": [0, %g]}]}})",
+                  range, inner_x, range);
+    return sweep::parse_spec(text, ".");
+  };
+  // the box turned 120 degrees about z: the orbit-space integral, independent of the engine
+  const sweep::Spec single = sweep::parse_spec(
+      R"({"sweep": 1, "angles": "deg", "entity": {"kind": "box", "min": [2, 0, 0], "max": [3, 1, 1]},
+          "motion": {"kind": "axes", "joints": [{"type": "revolute", "point": [0, 0, 0], "direction": [0, 0, 1], "range": [0, 120]}]}})",
+      ".");
+  double ref_err = 0;
+  const double turned_120 = sweep::testing::reference_volume(single, 1e-10, &ref_err);
+  const struct {
+    double inner_x, range, volume;
+  } cases[] = {{1, 360, M_PI * (1 + std::sqrt(5.0)) * (1 + std::sqrt(5.0))}, {0, 200, 6 * M_PI}, {0, 60, turned_120}};
+  for (const auto& c : cases) {
+    CAPTURE(c.inner_x, c.range);
+    const auto r = sweep::occt::run_sweep(spec(c.inner_x, c.range));
+    CAPTURE(r.report.to_json().dump());
+    REQUIRE(r.report.ok());
+    CHECK(r.report.volume_brep == Approx(c.volume).epsilon(1e-7));
+  }
 }
