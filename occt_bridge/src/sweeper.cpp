@@ -139,7 +139,6 @@ bool unable_to_orient(const BOPAlgo_MakerVolume& mv) {
   return false;
 }
 
-/// A point inside the solid cell, a small step inward from one of its faces.
 /// A point inside a cell too thin for fixed offsets: from points of its faces a ray goes inward
 /// along the normal, and the middle of its way to the next face the ray meets is taken when OCCT's
 /// classifier finds it inside.
@@ -175,6 +174,8 @@ bool thin_cell_point(const TopoDS_Solid& cell, double size, Eigen::Vector3d* out
   return false;
 }
 
+/// A point inside the solid cell, a small step inward from one of its faces (or, for a thin cell,
+/// thin_cell_point's).
 bool interior_point(const TopoDS_Solid& cell, double size, Eigen::Vector3d* out) {
   for (double frac : {1e-3, 1e-4, 1e-5}) {
     for (TopExp_Explorer ex(cell, TopAbs_FACE); ex.More(); ex.Next()) {
