@@ -4,7 +4,6 @@
 // Usage: fuse_copies SPEC N   (one-joint specs of solid entities; the error is against the spec's
 // _expected_volume)
 #include <BRepAlgoAPI_Fuse.hxx>
-#include <BRepBuilderAPI_Transform.hxx>
 #include <BRepGProp.hxx>
 #include <GProp_GProps.hxx>
 #include <TopExp_Explorer.hxx>
@@ -22,9 +21,7 @@
 
 namespace {
 
-TopoDS_Shape placed(const TopoDS_Shape& s, const Eigen::Isometry3d& T) {
-  return BRepBuilderAPI_Transform(s, sweep::occt::to_trsf(T), true).Shape();
-}
+using sweep::occt::moved;
 
 int run(const std::string& path, int n) {
   const sweep::Spec spec = sweep::load_spec(path);
@@ -35,7 +32,7 @@ int run(const std::string& path, int n) {
   }
   const sweep::ScrewJoint& j = motion.joints[0];
   double fit_error = 0;
-  const TopoDS_Shape body = placed(sweep::occt::entity_shape(spec.entity, 1e-7, &fit_error), motion.home);
+  const TopoDS_Shape body = moved(sweep::occt::entity_shape(spec.entity, 1e-7, &fit_error), motion.home);
   if (!TopExp_Explorer(body, TopAbs_SOLID).More()) {
     std::cerr << "fuse_copies: " << path << ": the entity is not a solid\n";
     return 2;
@@ -45,7 +42,7 @@ int run(const std::string& path, int n) {
   TopTools_ListOfShape first, others;
   for (int i = 0; i <= n; ++i) {
     const double q = j.lo + (j.hi - j.lo) * i / n;
-    (i == 0 ? first : others).Append(placed(body, j.transform(q)));
+    (i == 0 ? first : others).Append(moved(body, j.transform(q)));
   }
   BRepAlgoAPI_Fuse fuse;
   fuse.SetArguments(first);

@@ -100,10 +100,6 @@ Facing facing_of(const TopoDS_Face& f, const ScrewJoint& j, double size) {
   return pos > 0 ? Facing::Front : Facing::Back;
 }
 
-TopoDS_Shape moved(const TopoDS_Shape& s, const Eigen::Isometry3d& T) {
-  return BRepBuilderAPI_Transform(s, to_trsf(T), true).Shape();
-}
-
 /// The body with its faces split at their grazing curves (shared edges kept); `grazing` receives
 /// the number of grazing curves.
 TopoDS_Shape split_at_grazing(const TopoDS_Shape& body, const ScrewJoint& j, double fit_tol, double size,

@@ -49,6 +49,10 @@ gp_Trsf to_trsf(const Eigen::Isometry3d& T) {
   return t;
 }
 
+TopoDS_Shape moved(const TopoDS_Shape& s, const Eigen::Isometry3d& T) {
+  return BRepBuilderAPI_Transform(s, to_trsf(T), true).Shape();
+}
+
 namespace {
 
 gp_Ax2 axis_frame(const Eigen::Vector3d& origin, const Eigen::Vector3d& axis) {

@@ -34,6 +34,8 @@ inline Eigen::Vector3d to_eigen(const gp_XYZ& p) { return {p.X(), p.Y(), p.Z()};
 inline Eigen::Vector3d to_eigen(const gp_Pnt& p) { return {p.X(), p.Y(), p.Z()}; }
 inline Eigen::Vector3d to_eigen(const gp_Vec& p) { return {p.X(), p.Y(), p.Z()}; }
 gp_Trsf to_trsf(const Eigen::Isometry3d& T);
+/// A copy of `s` under the rigid motion T.
+TopoDS_Shape moved(const TopoDS_Shape& s, const Eigen::Isometry3d& T);
 
 /// The entity as an OCCT shape in its own frame with its placement applied.
 /// Solids for solid kinds, a face for `surface`, an edge for `curve`, a vertex for `point`.

@@ -127,10 +127,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
-TopoDS_Shape moved(const TopoDS_Shape& s, const Eigen::Isometry3d& T) {
-  return BRepBuilderAPI_Transform(s, to_trsf(T), true).Shape();
-}
-
 /// Whether OCCT's cell builder reported shells it could not orient.
 bool unable_to_orient(const BOPAlgo_MakerVolume& mv) {
   const Message_ListOfAlert& alerts = mv.GetReport()->GetAlerts(Message_Warning);
@@ -139,69 +135,69 @@ bool unable_to_orient(const BOPAlgo_MakerVolume& mv) {
   return false;
 }
 
+/// A point of a face and the unit normal there that points into the solid the face bounds.
+struct InwardPoint {
+  gp_Pnt p;
+  gp_Dir n;
+};
+
+/// The points of face f at the fractions a x b of its parameter box that lie inside it and have a
+/// normal.
+std::vector<InwardPoint> inward_points(const TopoDS_Face& f, std::initializer_list<double> as,
+                                       std::initializer_list<double> bs) {
+  double u0, u1, v0, v1;
+  BRepTools::UVBounds(f, u0, u1, v0, v1);
+  BRepTopAdaptor_FClass2d fc(f, 1e-9);
+  const BRepAdaptor_Surface S(f);
+  std::vector<InwardPoint> out;
+  for (double a : as)
+    for (double b : bs) {
+      const gp_Pnt2d uv(u0 + a * (u1 - u0), v0 + b * (v1 - v0));
+      if (fc.Perform(uv) != TopAbs_IN) continue;
+      BRepLProp_SLProps props(S, uv.X(), uv.Y(), 1, 1e-9);
+      if (!props.IsNormalDefined()) continue;
+      gp_Dir n = props.Normal();
+      if (f.Orientation() != TopAbs_REVERSED) n.Reverse();
+      out.push_back({props.Value(), n});
+    }
+  return out;
+}
+
 /// A point inside a cell too thin for fixed offsets: from points of its faces a ray goes inward
 /// along the normal, and the middle of its way to the next face the ray meets is taken when OCCT's
 /// classifier finds it inside.
 bool thin_cell_point(const TopoDS_Solid& cell, double size, Eigen::Vector3d* out) {
   IntCurvesFace_ShapeIntersector hits;
   hits.Load(cell, 1e-9 * size);
-  for (TopExp_Explorer ex(cell, TopAbs_FACE); ex.More(); ex.Next()) {
-    const TopoDS_Face f = TopoDS::Face(ex.Current());
-    double u0, u1, v0, v1;
-    BRepTools::UVBounds(f, u0, u1, v0, v1);
-    BRepTopAdaptor_FClass2d fc(f, 1e-9);
-    const BRepAdaptor_Surface S(f);
-    for (double a : {0.5, 0.29, 0.71, 0.13, 0.87})
-      for (double b : {0.5, 0.31, 0.69, 0.17, 0.83}) {
-        const gp_Pnt2d uv(u0 + a * (u1 - u0), v0 + b * (v1 - v0));
-        if (fc.Perform(uv) != TopAbs_IN) continue;
-        BRepLProp_SLProps props(S, uv.X(), uv.Y(), 1, 1e-9);
-        if (!props.IsNormalDefined()) continue;
-        gp_Dir n = props.Normal();
-        if (f.Orientation() != TopAbs_REVERSED) n.Reverse();  // inward
-        const gp_Pnt p = props.Value();
-        hits.Perform(gp_Lin(p, n), 1e-7 * size, 2 * size);
-        if (!hits.IsDone() || hits.NbPnt() == 0) continue;
-        double w = 2 * size;
-        for (int k = 1; k <= hits.NbPnt(); ++k) w = std::min(w, hits.WParameter(k));
-        const gp_Pnt mid = p.Translated(gp_Vec(n) * (0.5 * w));
-        if (BRepClass3d_SolidClassifier(cell, mid, 1e-10 * size).State() == TopAbs_IN) {
-          *out = to_eigen(mid);
-          return true;
-        }
+  for (TopExp_Explorer ex(cell, TopAbs_FACE); ex.More(); ex.Next())
+    for (const auto& [p, n] :
+         inward_points(TopoDS::Face(ex.Current()), {0.5, 0.29, 0.71, 0.13, 0.87}, {0.5, 0.31, 0.69, 0.17, 0.83})) {
+      hits.Perform(gp_Lin(p, n), 1e-7 * size, 2 * size);
+      if (!hits.IsDone() || hits.NbPnt() == 0) continue;
+      double w = 2 * size;
+      for (int k = 1; k <= hits.NbPnt(); ++k) w = std::min(w, hits.WParameter(k));
+      const gp_Pnt mid = p.Translated(gp_Vec(n) * (0.5 * w));
+      if (BRepClass3d_SolidClassifier(cell, mid, 1e-10 * size).State() == TopAbs_IN) {
+        *out = to_eigen(mid);
+        return true;
       }
-  }
+    }
   return false;
 }
 
 /// A point inside the solid cell, a small step inward from one of its faces (or, for a thin cell,
 /// thin_cell_point's).
 bool interior_point(const TopoDS_Solid& cell, double size, Eigen::Vector3d* out) {
-  for (double frac : {1e-3, 1e-4, 1e-5}) {
-    for (TopExp_Explorer ex(cell, TopAbs_FACE); ex.More(); ex.Next()) {
-      TopoDS_Face f = TopoDS::Face(ex.Current());
-      double u0, u1, v0, v1;
-      BRepTools::UVBounds(f, u0, u1, v0, v1);
-      BRepTopAdaptor_FClass2d fc(f, 1e-9);
-      for (double a : {0.5, 0.37, 0.63, 0.21, 0.79}) {
-        for (double b : {0.5, 0.41, 0.59, 0.27, 0.73}) {
-          gp_Pnt2d uv(u0 + a * (u1 - u0), v0 + b * (v1 - v0));
-          if (fc.Perform(uv) != TopAbs_IN) continue;
-          BRepAdaptor_Surface S(f);
-          BRepLProp_SLProps props(S, uv.X(), uv.Y(), 1, 1e-9);
-          if (!props.IsNormalDefined()) continue;
-          gp_Dir n = props.Normal();
-          if (f.Orientation() == TopAbs_REVERSED) n.Reverse();
-          gp_Pnt p = props.Value().Translated(gp_Vec(n) * (-frac * size));
-          BRepClass3d_SolidClassifier cls(cell, p, 1e-9 * size);
-          if (cls.State() == TopAbs_IN) {
-            *out = to_eigen(p);
-            return true;
-          }
+  for (double frac : {1e-3, 1e-4, 1e-5})
+    for (TopExp_Explorer ex(cell, TopAbs_FACE); ex.More(); ex.Next())
+      for (const auto& [p, n] :
+           inward_points(TopoDS::Face(ex.Current()), {0.5, 0.37, 0.63, 0.21, 0.79}, {0.5, 0.41, 0.59, 0.27, 0.73})) {
+        const gp_Pnt q = p.Translated(gp_Vec(n) * (frac * size));
+        if (BRepClass3d_SolidClassifier(cell, q, 1e-9 * size).State() == TopAbs_IN) {
+          *out = to_eigen(q);
+          return true;
         }
       }
-    }
-  }
   return thin_cell_point(cell, size, out);
 }
 
