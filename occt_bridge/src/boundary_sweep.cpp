@@ -42,7 +42,9 @@
 #include <functional>
 #include <map>
 #include <numeric>
+#include <optional>
 
+#include "revolution_section.hpp"
 #include "stop.hpp"
 #include "sweep/error.hpp"
 
@@ -416,10 +418,20 @@ BoundarySweep boundary_sweep(const TopoDS_Shape& body, const ScrewJoint& j, doub
   std::vector<std::vector<TopoDS_Edge>> pair_edges(pairs.size());
   const double boundary_tol = std::max(100 * eps, 10 * out.fit_error);
   std::vector<char> pair_failed(pairs.size(), 0);
+  // faces turned about a revolute joint's axis cross in circles, found from their meridians
+  std::vector<std::optional<RevolutionPatch>> turned(n);
+  if (settings.meridian_sections)
+    for (std::size_t i = 0; i < n; ++i) turned[i] = revolution_patch(cands[i].face, j, eps);
   parallel_for(pairs.size(), [&]() -> std::function<void(std::size_t)> {
     return [&](std::size_t k) {
       const TopoDS_Face& fa = cands[pairs[k].first].face;
       const TopoDS_Face& fb = cands[pairs[k].second].face;
+      if (turned[pairs[k].first] && turned[pairs[k].second]) {
+        if (auto arcs = revolution_section(*turned[pairs[k].first], *turned[pairs[k].second], j, boundary_tol)) {
+          pair_edges[k] = std::move(*arcs);
+          return;
+        }
+      }
       BRepAlgoAPI_Section sec(fa, fb, false);
       sec.SetNonDestructive(true);
       sec.SetFuzzyValue(eps);

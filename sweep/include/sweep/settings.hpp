@@ -23,6 +23,9 @@ struct Settings {
   /// How far off a piece of the candidate boundary its two sides are tested (x size), and again at
   /// twice that; a piece is kept when exactly one side is in the swept set.
   double classify_offset = 2e-6;
+  /// Two candidate faces turned about a revolute joint's axis cross in circles where their
+  /// meridians cross: found so in the meridian plane (off: OCCT's general section of every pair).
+  bool meridian_sections = true;
 
   // --- building a stage from the arrangement of its candidate faces
   /// A stage whose arrangement of the candidates left after pruning fails its checks is built
