@@ -82,6 +82,43 @@ std::vector<SurfacePoint> face_samples(const TopoDS_Face& f, int n) {
   return out;
 }
 
+/// Points inside a slender face that the grid of face_samples misses: from points along its edges,
+/// steps of shrinking length across them in the parameter plane, kept where the step lands inside;
+/// up to `count` of them, with outward normals.
+std::vector<SurfacePoint> edge_samples(const TopoDS_Face& f, int count) {
+  std::vector<SurfacePoint> out;
+  BRepTopAdaptor_FClass2d fc(f, 1e-12);
+  BRepAdaptor_Surface S(f);
+  for (TopExp_Explorer ex(f, TopAbs_EDGE); ex.More() && int(out.size()) < count; ex.Next()) {
+    double a, b;
+    const Handle(Geom2d_Curve) pc = BRep_Tool::CurveOnSurface(TopoDS::Edge(ex.Current()), f, a, b);
+    if (pc.IsNull()) continue;
+    const double chord = pc->Value(a).Distance(pc->Value(b));
+    if (!(chord > 0)) continue;
+    for (double at : {0.5, 0.3, 0.7}) {
+      gp_Pnt2d uv;
+      gp_Vec2d d;
+      pc->D1(a + at * (b - a), uv, d);
+      if (d.Magnitude() == 0) continue;
+      const gp_Vec2d across = gp_Vec2d(-d.Y(), d.X()).Normalized();
+      bool found = false;
+      for (double h = 0.25; h > 1e-4 && !found; h /= 3)
+        for (int side : {1, -1}) {
+          const gp_Pnt2d q = uv.Translated(across * (side * h * chord));
+          if (fc.Perform(q) != TopAbs_IN) continue;
+          BRepLProp_SLProps props(S, q.X(), q.Y(), 1, 1e-9);
+          if (!props.IsNormalDefined()) continue;
+          gp_Vec nn(props.Normal());
+          if (f.Orientation() == TopAbs_REVERSED) nn.Reverse();
+          out.push_back({props.Value(), nn});
+          found = true;
+          break;
+        }
+    }
+  }
+  return out;
+}
+
 /// How the motion meets a face: it leaves the face behind where n . v < 0 (Back), moves into what
 /// lies in front of it where n . v > 0 (Front), slides within it where n . v = 0 everywhere.
 enum class Facing { Back, Front, Slides, Mixed, Unknown };
@@ -516,17 +553,20 @@ BoundarySweep boundary_sweep(const TopoDS_Shape& body, const ScrewJoint& j, doub
   parallel_for(all.size(), [&]() -> std::function<void(std::size_t)> {
     const PointTest in_set = member();
     return [&, in_set](std::size_t i) {
-      // the first sample whose two sides answer the same at one and at two offsets
-      int decided = 2;
-      for (const auto& s : face_samples(all[i].face, 4)) {
-        const Eigen::Vector3d p = to_eigen(s.p), nn = to_eigen(s.n);
-        const bool out1 = in_set(p + delta * nn), in1 = in_set(p - delta * nn);
-        const bool out2 = in_set(p + 2 * delta * nn), in2 = in_set(p - 2 * delta * nn);
-        if (out1 != out2 || in1 != in2) continue;
-        decided = out1 == in1 ? 0 : (in1 ? 1 : -1);
-        break;
-      }
-      keep[i] = decided;
+      // the first sample whose two sides answer the same at one and at two offsets; a slender
+      // piece that the grid misses is sampled on a mesh of it
+      auto decide = [&](const std::vector<SurfacePoint>& samples) {
+        for (const auto& s : samples) {
+          const Eigen::Vector3d p = to_eigen(s.p), nn = to_eigen(s.n);
+          const bool out1 = in_set(p + delta * nn), in1 = in_set(p - delta * nn);
+          const bool out2 = in_set(p + 2 * delta * nn), in2 = in_set(p - 2 * delta * nn);
+          if (out1 != out2 || in1 != in2) continue;
+          return out1 == in1 ? 0 : (in1 ? 1 : -1);
+        }
+        return 2;
+      };
+      keep[i] = decide(face_samples(all[i].face, 4));
+      if (keep[i] == 2) keep[i] = decide(edge_samples(all[i].face, 12));
     };
   });
   out.seconds["classification"] = since(t_cls);
