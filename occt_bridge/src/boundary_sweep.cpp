@@ -45,6 +45,7 @@
 #include <optional>
 
 #include "revolution_section.hpp"
+#include "section_refit.hpp"
 #include "stop.hpp"
 #include "sweep/error.hpp"
 
@@ -455,6 +456,7 @@ BoundarySweep boundary_sweep(const TopoDS_Shape& body, const ScrewJoint& j, doub
   std::vector<std::vector<TopoDS_Edge>> pair_edges(pairs.size());
   const double boundary_tol = std::max(100 * eps, 10 * out.fit_error);
   std::vector<char> pair_failed(pairs.size(), 0);
+  std::vector<double> pair_refit_error(pairs.size(), 0.0);
   // faces turned about a revolute joint's axis cross in circles, found from their meridians
   std::vector<std::optional<RevolutionPatch>> turned(n);
   if (settings.meridian_sections)
@@ -486,7 +488,10 @@ BoundarySweep boundary_sweep(const TopoDS_Shape& body, const ScrewJoint& j, doub
         // a section along where the faces meet by construction (a grazing curve, where a swept face
         // touches the face it came from) splits neither
         if (on_boundary(e, fa, boundary_tol) || on_boundary(e, fb, boundary_tol)) continue;
-        pair_edges[k].push_back(e);
+        // an approximation that strays above the tolerance is refitted onto both surfaces
+        double err = 0;
+        pair_edges[k].push_back(refitted_section_edge(e, fa, fb, fit_tol, 0.1 * tol, &err));
+        pair_refit_error[k] = std::max(pair_refit_error[k], err);
       }
     };
   });
@@ -495,6 +500,7 @@ BoundarySweep boundary_sweep(const TopoDS_Shape& body, const ScrewJoint& j, doub
       out.failure = "the intersection of two candidate faces failed";
       return out;
     }
+  for (double err : pair_refit_error) out.fit_error = std::max(out.fit_error, err);
   std::vector<std::vector<TopoDS_Edge>> tools(n);
   for (std::size_t k = 0; k < pairs.size(); ++k)
     for (const auto& e : pair_edges[k]) {
