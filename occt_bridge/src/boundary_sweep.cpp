@@ -56,12 +56,23 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
-/// Points inside a face with its outward normals (the face's orientation applied), on an n x n grid
-/// of its parameter box.
+/// A point of a face with its outward normal (the face's orientation applied).
 struct SurfacePoint {
   gp_Pnt p;
   gp_Vec n;
 };
+/// Appends the point of face f at uv with its outward normal, when the normal is defined.
+bool add_surface_point(const BRepAdaptor_Surface& S, const TopoDS_Face& f, const gp_Pnt2d& uv,
+                       std::vector<SurfacePoint>& out) {
+  BRepLProp_SLProps props(S, uv.X(), uv.Y(), 1, 1e-9);
+  if (!props.IsNormalDefined()) return false;
+  gp_Vec nn(props.Normal());
+  if (f.Orientation() == TopAbs_REVERSED) nn.Reverse();
+  out.push_back({props.Value(), nn});
+  return true;
+}
+
+/// Points inside a face with their outward normals, on an n x n grid of its parameter box.
 std::vector<SurfacePoint> face_samples(const TopoDS_Face& f, int n) {
   std::vector<SurfacePoint> out;
   double u0, u1, v0, v1;
@@ -73,12 +84,7 @@ std::vector<SurfacePoint> face_samples(const TopoDS_Face& f, int n) {
       // an irrational offset keeps the grid off the middle lines of symmetric faces
       const gp_Pnt2d uv(u0 + (u1 - u0) * (a + 0.5 + 0.1180339887 * ((b % 3) - 1)) / n,
                         v0 + (v1 - v0) * (b + 0.5 + 0.0729490168 * ((a % 3) - 1)) / n);
-      if (fc.Perform(uv) != TopAbs_IN) continue;
-      BRepLProp_SLProps props(S, uv.X(), uv.Y(), 1, 1e-9);
-      if (!props.IsNormalDefined()) continue;
-      gp_Vec nn(props.Normal());
-      if (f.Orientation() == TopAbs_REVERSED) nn.Reverse();
-      out.push_back({props.Value(), nn});
+      if (fc.Perform(uv) == TopAbs_IN) add_surface_point(S, f, uv, out);
     }
   return out;
 }
@@ -106,12 +112,7 @@ std::vector<SurfacePoint> edge_samples(const TopoDS_Face& f, int count) {
       for (double h = 0.25; h > 1e-4 && !found; h /= 3)
         for (int side : {1, -1}) {
           const gp_Pnt2d q = uv.Translated(across * (side * h * chord));
-          if (fc.Perform(q) != TopAbs_IN) continue;
-          BRepLProp_SLProps props(S, q.X(), q.Y(), 1, 1e-9);
-          if (!props.IsNormalDefined()) continue;
-          gp_Vec nn(props.Normal());
-          if (f.Orientation() == TopAbs_REVERSED) nn.Reverse();
-          out.push_back({props.Value(), nn});
+          if (fc.Perform(q) != TopAbs_IN || !add_surface_point(S, f, q, out)) continue;
           found = true;
           break;
         }
