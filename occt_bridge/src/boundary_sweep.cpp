@@ -18,6 +18,7 @@
 #include <BRep_Tool.hxx>
 #include <Geom2d_Curve.hxx>
 #include <Geom_Line.hxx>
+#include <ShapeAnalysis_Surface.hxx>
 #include <ShapeFix_Solid.hxx>
 #include <Standard_Failure.hxx>
 #include <BRepCheck_Analyzer.hxx>
@@ -141,10 +142,25 @@ Facing facing_of(const TopoDS_Face& f, const ScrewJoint& j, double size) {
   return pos > 0 ? Facing::Front : Facing::Back;
 }
 
+/// The largest distance from face f's surface of curve c on [first, last], at 64 points.
+double distance_from_surface(const Handle(Geom_Curve)& c, double first, double last, const TopoDS_Face& f) {
+  TopLoc_Location loc;
+  const Handle(Geom_Surface) surf = BRep_Tool::Surface(f, loc);
+  if (surf.IsNull()) return 0.0;
+  ShapeAnalysis_Surface sas(surf);
+  double worst = 0;
+  for (int k = 0; k <= 64; ++k) {
+    const gp_Pnt p = c->Value(first + (last - first) * k / 64).Transformed(loc.Transformation().Inverted());
+    const gp_Pnt2d uv = sas.ValueOfUV(p, 1e-12);
+    worst = std::max(worst, p.Distance(surf->Value(uv.X(), uv.Y())));
+  }
+  return worst;
+}
+
 /// The body with its faces split at their grazing curves (shared edges kept); `grazing` receives
-/// the number of grazing curves.
+/// the number of grazing curves, `fit_error` is raised to their largest measured error.
 TopoDS_Shape split_at_grazing(const TopoDS_Shape& body, const ScrewJoint& j, double fit_tol, double size,
-                              int* grazing) {
+                              int* grazing, double* fit_error) {
   TopTools_ListOfShape tools;
   *grazing = 0;
   // A face closed on itself (a seam: a cylinder's band, a sphere) is cut in three by exact iso-lines
@@ -183,7 +199,13 @@ TopoDS_Shape split_at_grazing(const TopoDS_Shape& body, const ScrewJoint& j, dou
     for (const auto& g : grazing_curves(TopoDS::Face(ex.Current()), j, fit_tol, size)) {
       double f = g.first, l = g.last;
       const Handle(Geom_Curve) c = canonical_curve(g.curve, f, l, fit_tol);
-      tools.Append(BRepBuilderAPI_MakeEdge(c, f, l).Edge());
+      TopoDS_Edge e = BRepBuilderAPI_MakeEdge(c, f, l).Edge();
+      // a fitted curve strays from the face by up to its fitting error: its tolerance says so,
+      // or the splitter takes it for a curve beside the face and does not cut there
+      const double off = distance_from_surface(c, f, l, TopoDS::Face(ex.Current()));
+      if (off > BRep_Tool::Tolerance(e)) BRep_Builder().UpdateEdge(e, 1.5 * off);
+      *fit_error = std::max(*fit_error, g.error);
+      tools.Append(e);
       ++*grazing;
     }
   }
@@ -308,7 +330,7 @@ BoundarySweep boundary_sweep(const TopoDS_Shape& body, const ScrewJoint& j, doub
   // 1. The body's faces split at their grazing curves, each piece facing one way. Closed faces are
   //    halved first, so that every edge has two faces (a seam can be a silhouette).
   int grazing = 0;
-  const TopoDS_Shape split = split_at_grazing(body, j, fit_tol, size, &grazing);
+  const TopoDS_Shape split = split_at_grazing(body, j, fit_tol, size, &grazing, &out.fit_error);
   TopTools_IndexedMapOfShape pieces;
   TopExp::MapShapes(split, TopAbs_FACE, pieces);
   std::vector<Facing> face_facing(pieces.Extent() + 1, Facing::Unknown);

@@ -2,11 +2,13 @@
 // The zero set is traced on a grid over the face's parameter domain (marching squares, every
 // point an exact root of g on a grid line or a crossing point of two branches), densified with
 // roots on lines across the chords, clipped to the face's trimmed domain (ending exactly on the
-// roots of g along its boundary edges) and fitted by a B-spline curve to tolerance.
+// roots of g along its boundary edges) and fitted by a B-spline curve whose distance from the exact
+// curve is measured between the points.
 #include <BRepAdaptor_Surface.hxx>
 #include <BRepTools.hxx>
 #include <BRepTopAdaptor_FClass2d.hxx>
 #include <BRep_Tool.hxx>
+#include <GeomAPI_Interpolate.hxx>
 #include <GeomAPI_PointsToBSpline.hxx>
 #include <GeomAPI_ProjectPointOnCurve.hxx>
 #include <Geom2d_Curve.hxx>
@@ -17,7 +19,9 @@
 #include <Geom_Line.hxx>
 #include <gp_Circ.hxx>
 #include <gp_Lin.hxx>
+#include <ShapeAnalysis_Surface.hxx>
 #include <TColgp_Array1OfPnt.hxx>
+#include <TColgp_HArray1OfPnt.hxx>
 #include <TopExp_Explorer.hxx>
 #include <TopoDS.hxx>
 #include <algorithm>
@@ -238,12 +242,96 @@ std::vector<UV> densify(const Field& F, const std::vector<UV>& c) {
   return out;
 }
 
+/// The point of the grazing set near p: p projected onto the face's surface, then moved in the
+/// parameter plane along the gradient of g to g = 0.
+gp_Pnt grazing_point_near(const Field& F, ShapeAnalysis_Surface& projector, const gp_Pnt& p) {
+  const double hu = 1e-7 * (F.u1 - F.u0), hv = 1e-7 * (F.v1 - F.v0);
+  // (near a crossing of two branches the gradient vanishes: no step beyond a hundredth of the domain)
+  const double cap = 0.01 * std::max(F.u1 - F.u0, F.v1 - F.v0);
+  const gp_Pnt2d uv0 = projector.ValueOfUV(p, 1e-12);
+  UV uv(uv0.X(), uv0.Y());
+  for (int it = 0; it < 4; ++it) {
+    const double g = F.g(uv);
+    const UV grad((F.g(uv + UV(hu, 0)) - F.g(uv - UV(hu, 0))) / (2 * hu),
+                  (F.g(uv + UV(0, hv)) - F.g(uv - UV(0, hv))) / (2 * hv));
+    const double n2 = grad.squaredNorm();
+    if (!(n2 > 0)) break;
+    UV step = g / n2 * grad;
+    if (step.norm() > cap) step *= cap / step.norm();
+    uv -= step;
+  }
+  return F.point(uv);
+}
+
+/// The largest distance of curve c from the exact grazing curve, at eight points per knot span
+/// (the distance to grazing_point_near bounds the true one from above).
+double distance_from_grazing(const Field& F, ShapeAnalysis_Surface& projector, const Handle(Geom_BSplineCurve)& c) {
+  double worst = 0;
+  const int spans = c->NbKnots() - 1;
+  for (int s = 1; s <= spans; ++s)
+    for (int k = 0; k < 8; ++k) {
+      const gp_Pnt p = c->Value(c->Knot(s) + (c->Knot(s + 1) - c->Knot(s)) * (k + 0.5) / 8);
+      worst = std::max(worst, p.Distance(grazing_point_near(F, projector, p)));
+    }
+  return worst;
+}
+
+/// A B-spline through the exact points q of a grazing curve: approximated to a tenth of tol, or,
+/// where that strays between the points (an approximation that cannot meet its tolerance ends in
+/// wiggles), interpolated by a cubic; while that does not keep within tol, through twice the
+/// points (up to three times). *error: the measured distance from the exact curve of the curve returned.
+Handle(Geom_BSplineCurve) fitted_curve(const Field& F, ShapeAnalysis_Surface& projector, std::vector<gp_Pnt> q,
+                                       double tol, double* error) {
+  *error = 1e300;
+  Handle(Geom_BSplineCurve) best;
+  auto consider = [&](const Handle(Geom_BSplineCurve)& c) {
+    if (c.IsNull()) return;
+    const double e = distance_from_grazing(F, projector, c);
+    if (e < *error) {
+      best = c;
+      *error = e;
+    }
+  };
+  for (int round = 0; round < 4 && *error > tol; ++round) {
+    if (round > 0) {
+      std::vector<gp_Pnt> denser{q.front()};
+      for (std::size_t k = 1; k < q.size(); ++k) {
+        const gp_Pnt mid((q[k - 1].XYZ() + q[k].XYZ()) * 0.5);
+        const gp_Pnt exact = grazing_point_near(F, projector, mid);
+        // (a midpoint whose grazing point is not between its neighbours is left out)
+        if (exact.Distance(mid) <= 0.5 * q[k - 1].Distance(q[k])) denser.push_back(exact);
+        denser.push_back(q[k]);
+      }
+      q = std::move(denser);
+    }
+    TColgp_Array1OfPnt arr(1, int(q.size()));
+    for (std::size_t k = 0; k < q.size(); ++k) arr.SetValue(int(k) + 1, q[k]);
+    if (q.size() == 2) {
+      GeomAPI_PointsToBSpline fit(arr, 1, 1, GeomAbs_C0, tol);
+      if (fit.IsDone()) consider(fit.Curve());
+      continue;
+    }
+    if (round == 0) {  // (with more points than this an approximation costs much and fails alike)
+      GeomAPI_PointsToBSpline fit(arr, 3, 8, GeomAbs_C2, 0.1 * tol);
+      if (fit.IsDone()) consider(fit.Curve());
+      if (*error <= tol) break;
+    }
+    Handle(TColgp_HArray1OfPnt) pts = new TColgp_HArray1OfPnt(1, int(q.size()));
+    for (std::size_t k = 0; k < q.size(); ++k) pts->SetValue(int(k) + 1, q[k]);
+    GeomAPI_Interpolate interp(pts, false, 1e-12);
+    interp.Perform();
+    if (interp.IsDone()) consider(interp.Curve());
+  }
+  return best;
+}
+
 }  // namespace
 
 std::vector<GrazingCurve> grazing_curves(const TopoDS_Face& face, const ScrewJoint& joint, double tol,
                                          double size) {
   Field F(face, joint);
   BRepTools::UVBounds(face, F.u0, F.u1, F.v0, F.v1);
+  ShapeAnalysis_Surface projector(BRep_Tool::Surface(face));
   // Periodic directions: trace over a window shifted by an irrational fraction of the period,
   // so that no grazing line sits on the window's border.
   double ua = F.u0, ub = F.u1, va = F.v0, vb = F.v1;
@@ -408,21 +496,14 @@ std::vector<GrazingCurve> grazing_curves(const TopoDS_Face& face, const ScrewJoi
           }
         }
       }
-      TColgp_Array1OfPnt arr(1, int(q.size()));
-      for (std::size_t k = 0; k < q.size(); ++k) arr.SetValue(int(k) + 1, q[k]);
-      Handle(Geom_BSplineCurve) c;
-      if (q.size() == 2) {
-        GeomAPI_PointsToBSpline fit(arr, 1, 1, GeomAbs_C0, tol);
-        c = fit.Curve();
-      } else {
-        GeomAPI_PointsToBSpline fit(arr, 3, 8, GeomAbs_C2, 0.1 * tol);
-        if (!fit.IsDone()) continue;
-        c = fit.Curve();
-      }
+      double error = 0;
+      const Handle(Geom_BSplineCurve) c = fitted_curve(F, projector, q, tol, &error);
+      if (c.IsNull()) continue;
       GrazingCurve gc;
       gc.curve = c;
       gc.first = c->FirstParameter();
       gc.last = c->LastParameter();
+      gc.error = error;
       out.push_back(gc);
     }
   }

@@ -57,6 +57,7 @@ TopoDS_Shape sampled_points(const EntitySpec& e);
 struct GrazingCurve {
   Handle(Geom_Curve) curve;
   double first = 0, last = 0;
+  double error = 0;  ///< measured distance from the exact grazing curve (0 for lines and circles)
 };
 /// Grazing curves of a face under one screw joint (in the face's current position). Faces whose
 /// whole surface is grazing (they slide within themselves) give none.

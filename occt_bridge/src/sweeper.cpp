@@ -648,6 +648,7 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
     const TopoDS_Face& face = TopoDS::Face(faces(k));
     TopTools_ListOfShape tools;
     for (const auto& g : grazing_curves(face, j, fit_tol, esize)) {
+      fit_err = std::max(fit_err, g.error);
       double f = g.first, l = g.last;
       Handle(Geom_Curve) cc = canonical_curve(g.curve, f, l, fit_tol);
       tools.Append(BRepBuilderAPI_MakeEdge(cc, f, l).Edge());

@@ -127,13 +127,13 @@ class Primitive : public orbit_detail::LabeledSolid {
   Spans on_curve_labeled(const OrbitCurve& world, double lo, double hi, double margin) const override {
     const OrbitCurve o = world.mapped(to_local_);
     Spans acc;
-    bool first = true;
     // windows of at most a quarter turn keep the polynomial bounds tight
     const int pieces = std::max(1, int(std::ceil((hi - lo) / (0.5 * M_PI))));
     for (int p = 0; p < pieces; ++p) {
       const double a = lo + (hi - lo) * p / pieces, b = lo + (hi - lo) * (p + 1) / pieces;
       const double mid = 0.5 * (a + b), w = 0.5 * (b - a);
       const OrbitCurve s = o.shifted(mid);
+      if (misses_box(s, w, margin)) continue;  // (spans on either side of it stay apart)
       TrigPoly X = TrigPoly::linear(s.c.x(), s.a.x(), s.b.x(), s.d.x());
       TrigPoly Y = TrigPoly::linear(s.c.y(), s.a.y(), s.b.y(), s.d.y());
       TrigPoly Z = TrigPoly::linear(s.c.z(), s.a.z(), s.b.z(), s.d.z());
@@ -142,9 +142,7 @@ class Primitive : public orbit_detail::LabeledSolid {
       Spans piece{{a, b, -1, -1}};
       for (int k = 0; k < G::count() && !piece.empty(); ++k)
         piece = orbit_detail::intersect(piece, orbit_detail::negative_set(gs[k], -w, w, mid, ids_ + k));
-      if (first) acc = std::move(piece);
-      else acc = orbit_detail::join_adjacent(acc, piece);
-      first = false;
+      acc = orbit_detail::join_adjacent(acc, piece);
     }
     return acc;
   }
@@ -159,6 +157,16 @@ class Primitive : public orbit_detail::LabeledSolid {
   Eigen::AlignedBox3d bounds() const override { return orbit_detail::mapped_box(g_.box(), frame_); }
 
  private:
+  /// True when curve s on [-w, w] keeps outside the local box grown by the margin: each
+  /// coordinate stays within w times its speed bound of its value at 0.
+  bool misses_box(const OrbitCurve& s, double w, double margin) const {
+    const Eigen::AlignedBox3d box = g_.box();
+    for (int i = 0; i < 3; ++i) {
+      const double at0 = s.c[i] + s.a[i], reach = w * (std::hypot(s.a[i], s.b[i]) + std::abs(s.d[i]));
+      if (at0 + reach < box.min()[i] - margin || at0 - reach > box.max()[i] + margin) return true;
+    }
+    return false;
+  }
   G g_;
   Eigen::Isometry3d to_local_, frame_;
   int ids_ = 0;

@@ -109,24 +109,38 @@ double TrigPoly::operator()(double t) const {
   return g;
 }
 
+namespace {
+
+/// w^0 .. w^K
+void powers(double w, double* out) {
+  out[0] = 1;
+  for (int k = 1; k <= TrigPoly::K; ++k) out[k] = out[k - 1] * w;
+}
+
+}  // namespace
+
 double TrigPoly::second_derivative_bound(double w) const {
+  double wk[K + 1];
+  powers(w, wk);
   double bound = 0;
   for (int k = 0; k <= kmax; ++k)
     for (int n = 0; n <= nmax; ++n) {
       const double m = std::abs(c[k][n]) + std::abs(s[k][n]);
       if (m == 0) continue;
       // (t^k trig(n t))'' = k (k-1) t^(k-2) trig + 2 k n t^(k-1) trig' + n^2 t^k trig''
-      const double b = (k >= 2 ? k * (k - 1) * std::pow(w, k - 2) : 0.0) +
-                       (k >= 1 ? 2.0 * k * n * std::pow(w, k - 1) : 0.0) + double(n * n) * std::pow(w, k);
+      const double b = (k >= 2 ? k * (k - 1) * wk[k - 2] : 0.0) + (k >= 1 ? 2.0 * k * n * wk[k - 1] : 0.0) +
+                       double(n * n) * wk[k];
       bound += m * b;
     }
   return bound;
 }
 
 double TrigPoly::magnitude(double w) const {
+  double wk[K + 1];
+  powers(w, wk);
   double m = 0;
   for (int k = 0; k <= kmax; ++k)
-    for (int n = 0; n <= nmax; ++n) m += (std::abs(c[k][n]) + std::abs(s[k][n])) * std::pow(w, k);
+    for (int n = 0; n <= nmax; ++n) m += (std::abs(c[k][n]) + std::abs(s[k][n])) * wk[k];
   return m;
 }
 
