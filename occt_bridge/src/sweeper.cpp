@@ -1199,8 +1199,10 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
   install_signal_handlers();
   const StopScope stop_scope(opt.stop);
   // each step of a long run: the stop request is polled, then the step is shown
+  std::string last_step = "setting up";  // (named in a failure of OCCT's)
   const auto step = [&](const std::string& what) {
     check_stop();
+    last_step = what;
     if (opt.progress) opt.progress(what);
   };
   try {
@@ -1739,7 +1741,8 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
   } catch (const InputError&) {
     throw;
   } catch (const Standard_Failure& f) {
-    return fail(std::string("OCCT: ") + (f.GetMessageString() ? f.GetMessageString() : "failure"));
+    return fail(std::string("OCCT: ") + (f.GetMessageString() ? f.GetMessageString() : "failure") + " (after: " +
+                last_step + ")");
   } catch (const ComputeError& e) {
     return fail(e.what());
   }
