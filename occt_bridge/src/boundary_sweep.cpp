@@ -45,7 +45,7 @@
 #include <numeric>
 #include <optional>
 
-#include "revolution_section.hpp"
+#include "orbit_section.hpp"
 #include "section_refit.hpp"
 #include "stop.hpp"
 #include "sweep/error.hpp"
@@ -286,6 +286,7 @@ struct Candidate {
   TopoDS_Face face;
   int variety = -1;
   enum class Kind { Start, End, Swept } kind = Kind::Swept;
+  Handle(Geom_Surface) sheet;  ///< a piece of a face through itself: the sheet it lies on
 };
 
 /// The solid with the pieces of one analytic surface (the halves of a closed face, the pieces
@@ -350,9 +351,9 @@ BoundarySweep boundary_sweep(const TopoDS_Shape& body, const ScrewJoint& j, doub
     const Facing fa = face_facing[k];
     // the start and end copies of faces the motion slides within bound the region they sweep
     if (fa == Facing::Back || fa == Facing::Slides || fa == Facing::Unknown)
-      cands.push_back({f, start_id, Candidate::Kind::Start});
+      cands.push_back({f, start_id, Candidate::Kind::Start, {}});
     if (fa == Facing::Front || fa == Facing::Slides || fa == Facing::Unknown)
-      cands.push_back({TopoDS::Face(moved(f, at_end)), end_id, Candidate::Kind::End});
+      cands.push_back({TopoDS::Face(moved(f, at_end)), end_id, Candidate::Kind::End, {}});
   }
 
   // 2. The sweeps of the silhouette: edges between a face the motion leaves and one it moves into
@@ -412,7 +413,7 @@ BoundarySweep boundary_sweep(const TopoDS_Shape& body, const ScrewJoint& j, doub
                             std::string(is_grazing ? "grazing curve (n . v = 0)" : "edge") + " " + std::to_string(++edge_no) +
                                 " swept by joint " + std::to_string(joint_no),
                             nlohmann::json::object(), efree);
-    for (const auto& face : sw) cands.push_back({face, vid, Candidate::Kind::Swept});
+    for (const auto& face : sw) cands.push_back({face, vid, Candidate::Kind::Swept, {}});
   }
   out.seconds["candidates"] = since(t0);
 
@@ -456,9 +457,26 @@ BoundarySweep boundary_sweep(const TopoDS_Shape& body, const ScrewJoint& j, doub
       // (the arrangement's faces may cross the start or the end copy: they are swept regions now)
       const Candidate& first = cands[members[0]];
       for (int k = 1; k <= faces.Extent(); ++k)
-        merged.push_back({TopoDS::Face(faces(k)), first.variety, Candidate::Kind::Swept});
+        merged.push_back({TopoDS::Face(faces(k)), first.variety, Candidate::Kind::Swept, {}});
     }
     cands.swap(merged);
+  }
+  // A face swept along the orbits whose profile crosses itself (an extrusion of a curve whose
+  // projection along the direction loops) passes through itself: cut there into embedded pieces.
+  const double boundary_tol = std::max(100 * eps, 10 * out.fit_error);
+  if (settings.orbit_sections) {
+    std::vector<Candidate> embedded;
+    for (const Candidate& c : cands) {
+      if (c.kind == Candidate::Kind::Swept)
+        if (const auto patch = orbit_patch(c.face, j, eps)) {
+          const std::vector<double> at = profile_self_crossings(*patch, j, boundary_tol);
+          const std::vector<PatchPiece> pieces = at.empty() ? std::vector<PatchPiece>{} : patch_pieces(*patch, at);
+          for (const PatchPiece& pp : pieces) embedded.push_back({pp.face, c.variety, c.kind, pp.sheet});
+          if (!pieces.empty()) continue;
+        }
+      embedded.push_back(c);
+    }
+    cands.swap(embedded);
   }
   out.candidates = int(cands.size());
   out.seconds["groups"] = since(t_groups);
@@ -477,20 +495,23 @@ BoundarySweep boundary_sweep(const TopoDS_Shape& body, const ScrewJoint& j, doub
       pairs.push_back({a, b});
     }
   std::vector<std::vector<TopoDS_Edge>> pair_edges(pairs.size());
-  const double boundary_tol = std::max(100 * eps, 10 * out.fit_error);
+  // which of the pair's faces each edge splits: 1 the first, 2 the second, 3 both
+  std::vector<std::vector<int>> pair_sides(pairs.size());
   std::vector<char> pair_failed(pairs.size(), 0);
   std::vector<double> pair_refit_error(pairs.size(), 0.0);
-  // faces turned about a revolute joint's axis cross in circles, found from their meridians
-  std::vector<std::optional<RevolutionPatch>> turned(n);
-  if (settings.meridian_sections)
-    for (std::size_t i = 0; i < n; ++i) turned[i] = revolution_patch(cands[i].face, j, eps);
+  // faces swept along a revolute or prismatic joint's orbits cross in circles or segments, found
+  // from their profiles
+  std::vector<std::optional<OrbitPatch>> carried(n);
+  if (settings.orbit_sections)
+    for (std::size_t i = 0; i < n; ++i) carried[i] = orbit_patch(cands[i].face, j, eps);
   parallel_for(pairs.size(), [&]() -> std::function<void(std::size_t)> {
     return [&](std::size_t k) {
       const TopoDS_Face& fa = cands[pairs[k].first].face;
       const TopoDS_Face& fb = cands[pairs[k].second].face;
-      if (turned[pairs[k].first] && turned[pairs[k].second]) {
-        if (auto arcs = revolution_section(*turned[pairs[k].first], *turned[pairs[k].second], j, boundary_tol)) {
+      if (carried[pairs[k].first] && carried[pairs[k].second]) {
+        if (auto arcs = orbit_section(*carried[pairs[k].first], *carried[pairs[k].second], j, boundary_tol)) {
           pair_edges[k] = std::move(*arcs);
+          pair_sides[k].assign(pair_edges[k].size(), 3);
           return;
         }
       }
@@ -509,11 +530,14 @@ BoundarySweep boundary_sweep(const TopoDS_Shape& body, const ScrewJoint& j, doub
       for (TopExp_Explorer ex(sec.Shape(), TopAbs_EDGE); ex.More(); ex.Next()) {
         const TopoDS_Edge& e = TopoDS::Edge(ex.Current());
         // a section along where the faces meet by construction (a grazing curve, where a swept face
-        // touches the face it came from) splits neither
-        if (on_boundary(e, fa, boundary_tol) || on_boundary(e, fb, boundary_tol)) continue;
+        // touches the face it came from) splits neither; one along the boundary of one face (where
+        // that face meets its neighbour) splits the other
+        const int sides = (on_boundary(e, fa, boundary_tol) ? 0 : 1) | (on_boundary(e, fb, boundary_tol) ? 0 : 2);
+        if (sides == 0) continue;
         // an approximation that strays above the tolerance is refitted onto both surfaces
         double err = 0;
         pair_edges[k].push_back(refitted_section_edge(e, fa, fb, fit_tol, 0.1 * tol, &err));
+        pair_sides[k].push_back(sides);
         pair_refit_error[k] = std::max(pair_refit_error[k], err);
       }
     };
@@ -526,9 +550,9 @@ BoundarySweep boundary_sweep(const TopoDS_Shape& body, const ScrewJoint& j, doub
   for (double err : pair_refit_error) out.fit_error = std::max(out.fit_error, err);
   std::vector<std::vector<TopoDS_Edge>> tools(n);
   for (std::size_t k = 0; k < pairs.size(); ++k)
-    for (const auto& e : pair_edges[k]) {
-      tools[pairs[k].first].push_back(e);
-      tools[pairs[k].second].push_back(e);
+    for (std::size_t m = 0; m < pair_edges[k].size(); ++m) {
+      if (pair_sides[k][m] & 1) tools[pairs[k].first].push_back(pair_edges[k][m]);
+      if (pair_sides[k][m] & 2) tools[pairs[k].second].push_back(pair_edges[k][m]);
     }
   out.seconds["sections"] = since(t_sec);
 
@@ -568,10 +592,11 @@ BoundarySweep boundary_sweep(const TopoDS_Shape& body, const ScrewJoint& j, doub
   struct Piece {
     TopoDS_Face face;
     int variety;
+    Handle(Geom_Surface) sheet;
   };
   std::vector<Piece> all;
   for (std::size_t i = 0; i < n; ++i)
-    for (const auto& f : split_faces[i]) all.push_back({f, cands[i].variety});
+    for (const auto& f : split_faces[i]) all.push_back({f, cands[i].variety, cands[i].sheet});
   out.pieces = int(all.size());
   out.seconds["splitting"] = since(t_split);
 
@@ -617,7 +642,8 @@ BoundarySweep boundary_sweep(const TopoDS_Shape& body, const ScrewJoint& j, doub
     };
     dump("candidates", [](std::size_t) { return true; }, cands.size(), [&](std::size_t i) { return cands[i].face; });
     dump("pieces", [](std::size_t) { return true; }, all.size(), [&](std::size_t i) { return all[i].face; });
-    dump("kept", [&](std::size_t i) { return keep[i] != 0; }, all.size(), [&](std::size_t i) { return all[i].face; });
+    dump("kept", [&](std::size_t i) { return keep[i] != 0; }, all.size(),
+         [&](std::size_t i) { return keep[i] < 0 ? all[i].face.Reversed() : TopoDS_Shape(all[i].face); });
     TopoDS_Compound tl;
     BRep_Builder bb;
     bb.MakeCompound(tl);
@@ -632,7 +658,7 @@ BoundarySweep boundary_sweep(const TopoDS_Shape& body, const ScrewJoint& j, doub
   int kept = 0;
   for (std::size_t i = 0; i < all.size(); ++i) {
     if (keep[i] == 0) continue;
-    TopoDS_Face f = all[i].face;
+    TopoDS_Face f = all[i].sheet.IsNull() ? all[i].face : on_own_sheet(all[i].face, all[i].sheet);
     if (keep[i] < 0) f = TopoDS::Face(f.Reversed());
     sewing.Add(f);
     out.candidate_faces.push_back(f);

@@ -1534,6 +1534,8 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
       const int solids = separate_parts(parts, tol);
       set_centroid_and_box(rep, checks.centroid, checks.box);
       rep.tol_achieved = std::max(fit_err, measured_geometric_error(solid));
+      if (const char* dir = std::getenv("SWEEP_DUMP_BOUNDARY"))  // diagnostics: the solid checked last
+        BRepTools::Write(solid, (std::string(dir) + "/checked.brep").c_str());
       rep.seconds["validation"] = rep.seconds.value("validation", 0.0) + since(t_val);
 
       std::string why;

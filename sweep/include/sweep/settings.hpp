@@ -23,9 +23,10 @@ struct Settings {
   /// How far off a piece of the candidate boundary its two sides are tested (x size), and again at
   /// twice that; a piece is kept when exactly one side is in the swept set.
   double classify_offset = 2e-6;
-  /// Two candidate faces turned about a revolute joint's axis cross in circles where their
-  /// meridians cross: found so in the meridian plane (off: OCCT's general section of every pair).
-  bool meridian_sections = true;
+  /// Two candidate faces swept along a revolute or prismatic joint's orbits cross in circles or
+  /// segments where their profiles cross: found so in the plane across the orbits (off: OCCT's
+  /// general section of every pair).
+  bool orbit_sections = true;
 
   // --- building a stage from the arrangement of its candidate faces
   /// A stage whose arrangement of the candidates left after pruning fails its checks is built
