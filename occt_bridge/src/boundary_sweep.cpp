@@ -142,21 +142,6 @@ Facing facing_of(const TopoDS_Face& f, const ScrewJoint& j, double size) {
   return pos > 0 ? Facing::Front : Facing::Back;
 }
 
-/// The largest distance from face f's surface of curve c on [first, last], at 64 points.
-double distance_from_surface(const Handle(Geom_Curve)& c, double first, double last, const TopoDS_Face& f) {
-  TopLoc_Location loc;
-  const Handle(Geom_Surface) surf = BRep_Tool::Surface(f, loc);
-  if (surf.IsNull()) return 0.0;
-  ShapeAnalysis_Surface sas(surf);
-  double worst = 0;
-  for (int k = 0; k <= 64; ++k) {
-    const gp_Pnt p = c->Value(first + (last - first) * k / 64).Transformed(loc.Transformation().Inverted());
-    const gp_Pnt2d uv = sas.ValueOfUV(p, 1e-12);
-    worst = std::max(worst, p.Distance(surf->Value(uv.X(), uv.Y())));
-  }
-  return worst;
-}
-
 /// The body with its faces split at their grazing curves (shared edges kept); `grazing` receives
 /// the number of grazing curves, `fit_error` is raised to their largest measured error.
 TopoDS_Shape split_at_grazing(const TopoDS_Shape& body, const ScrewJoint& j, double fit_tol, double size,
@@ -197,15 +182,8 @@ TopoDS_Shape split_at_grazing(const TopoDS_Shape& body, const ScrewJoint& j, dou
   }
   for (TopExp_Explorer ex(body, TopAbs_FACE); ex.More(); ex.Next()) {
     for (const auto& g : grazing_curves(TopoDS::Face(ex.Current()), j, fit_tol, size)) {
-      double f = g.first, l = g.last;
-      const Handle(Geom_Curve) c = canonical_curve(g.curve, f, l, fit_tol);
-      TopoDS_Edge e = BRepBuilderAPI_MakeEdge(c, f, l).Edge();
-      // a fitted curve strays from the face by up to its fitting error: its tolerance says so,
-      // or the splitter takes it for a curve beside the face and does not cut there
-      const double off = distance_from_surface(c, f, l, TopoDS::Face(ex.Current()));
-      if (off > BRep_Tool::Tolerance(e)) BRep_Builder().UpdateEdge(e, 1.5 * off);
+      tools.Append(grazing_edge(g, TopoDS::Face(ex.Current()), fit_tol).edge);
       *fit_error = std::max(*fit_error, g.error);
-      tools.Append(e);
       ++*grazing;
     }
   }
@@ -288,6 +266,25 @@ struct Candidate {
   enum class Kind { Start, End, Swept } kind = Kind::Swept;
   Handle(Geom_Surface) sheet;  ///< a piece of a face through itself: the sheet it lies on
 };
+
+/// The candidates with each face swept along the joint's orbits whose profile crosses itself (an
+/// extrusion of a curve whose projection along the direction loops: it passes through itself) cut
+/// there into embedded pieces, each with the sheet it lies on.
+std::vector<Candidate> cut_where_through_itself(const std::vector<Candidate>& cands, const ScrewJoint& j, double eps,
+                                                double boundary_tol) {
+  std::vector<Candidate> out;
+  for (const Candidate& c : cands) {
+    if (c.kind == Candidate::Kind::Swept)
+      if (const auto patch = orbit_patch(c.face, j, eps)) {
+        const std::vector<double> at = profile_self_crossings(*patch, j, boundary_tol);
+        const std::vector<PatchPiece> pieces = at.empty() ? std::vector<PatchPiece>{} : patch_pieces(*patch, at);
+        for (const PatchPiece& pp : pieces) out.push_back({pp.face, c.variety, c.kind, pp.sheet});
+        if (!pieces.empty()) continue;
+      }
+    out.push_back(c);
+  }
+  return out;
+}
 
 /// The solid with the pieces of one analytic surface (the halves of a closed face, the pieces
 /// sections made) merged into one face each, when every face is analytic and the merged solid is
@@ -461,23 +458,8 @@ BoundarySweep boundary_sweep(const TopoDS_Shape& body, const ScrewJoint& j, doub
     }
     cands.swap(merged);
   }
-  // A face swept along the orbits whose profile crosses itself (an extrusion of a curve whose
-  // projection along the direction loops) passes through itself: cut there into embedded pieces.
   const double boundary_tol = std::max(100 * eps, 10 * out.fit_error);
-  if (settings.orbit_sections) {
-    std::vector<Candidate> embedded;
-    for (const Candidate& c : cands) {
-      if (c.kind == Candidate::Kind::Swept)
-        if (const auto patch = orbit_patch(c.face, j, eps)) {
-          const std::vector<double> at = profile_self_crossings(*patch, j, boundary_tol);
-          const std::vector<PatchPiece> pieces = at.empty() ? std::vector<PatchPiece>{} : patch_pieces(*patch, at);
-          for (const PatchPiece& pp : pieces) embedded.push_back({pp.face, c.variety, c.kind, pp.sheet});
-          if (!pieces.empty()) continue;
-        }
-      embedded.push_back(c);
-    }
-    cands.swap(embedded);
-  }
+  if (settings.orbit_sections) cands = cut_where_through_itself(cands, j, eps, boundary_tol);
   out.candidates = int(cands.size());
   out.seconds["groups"] = since(t_groups);
 

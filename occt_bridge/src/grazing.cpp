@@ -5,6 +5,8 @@
 // roots of g along its boundary edges) and fitted by a B-spline curve whose distance from the exact
 // curve is measured between the points.
 #include <BRepAdaptor_Surface.hxx>
+#include <BRepBuilderAPI_MakeEdge.hxx>
+#include <BRep_Builder.hxx>
 #include <BRepTools.hxx>
 #include <BRepTopAdaptor_FClass2d.hxx>
 #include <BRep_Tool.hxx>
@@ -507,6 +509,36 @@ std::vector<GrazingCurve> grazing_curves(const TopoDS_Face& face, const ScrewJoi
       out.push_back(gc);
     }
   }
+  return out;
+}
+
+namespace {
+
+/// The largest distance from face f's surface of curve c on [first, last], at 64 points.
+double distance_from_surface(const Handle(Geom_Curve)& c, double first, double last, const TopoDS_Face& f) {
+  TopLoc_Location loc;
+  const Handle(Geom_Surface) surf = BRep_Tool::Surface(f, loc);
+  if (surf.IsNull()) return 0.0;
+  ShapeAnalysis_Surface sas(surf);
+  double worst = 0;
+  for (int k = 0; k <= 64; ++k) {
+    const gp_Pnt p = c->Value(first + (last - first) * k / 64).Transformed(loc.Transformation().Inverted());
+    const gp_Pnt2d uv = sas.ValueOfUV(p, 1e-12);
+    worst = std::max(worst, p.Distance(surf->Value(uv.X(), uv.Y())));
+  }
+  return worst;
+}
+
+}  // namespace
+
+GrazingEdge grazing_edge(const GrazingCurve& g, const TopoDS_Face& face, double tol) {
+  GrazingEdge out;
+  out.first = g.first;
+  out.last = g.last;
+  out.curve = canonical_curve(g.curve, out.first, out.last, tol);
+  out.edge = BRepBuilderAPI_MakeEdge(out.curve, out.first, out.last).Edge();
+  const double off = distance_from_surface(out.curve, out.first, out.last, face);
+  if (off > BRep_Tool::Tolerance(out.edge)) BRep_Builder().UpdateEdge(out.edge, 1.5 * off);
   return out;
 }
 

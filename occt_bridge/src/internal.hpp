@@ -63,6 +63,15 @@ struct GrazingCurve {
 /// whole surface is grazing (they slide within themselves) give none.
 std::vector<GrazingCurve> grazing_curves(const TopoDS_Face& face, const ScrewJoint& joint, double tol,
                                          double size);
+/// A grazing curve as an edge that splits its face: the curve in its canonical form (a line or a
+/// circle where it is one, within tol) and an edge whose tolerance covers how far the curve strays
+/// from the face (else a splitter takes a fitted curve for one beside the face and does not cut).
+struct GrazingEdge {
+  Handle(Geom_Curve) curve;
+  double first = 0, last = 0;
+  TopoDS_Edge edge;
+};
+GrazingEdge grazing_edge(const GrazingCurve& g, const TopoDS_Face& face, double tol);
 
 /// Faces swept by curve `c` (on [first,last]) under `joint` for q in [0, T]: exact surfaces of
 /// revolution / extrusion, fitted B-spline surfaces for helical motions; split into pieces that do

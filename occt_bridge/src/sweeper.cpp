@@ -649,9 +649,10 @@ TopoDS_Shape solid_sweep(const TopoDS_Shape& body, int dim, const ScrewJoint& j,
     TopTools_ListOfShape tools;
     for (const auto& g : grazing_curves(face, j, fit_tol, esize)) {
       fit_err = std::max(fit_err, g.error);
-      double f = g.first, l = g.last;
-      Handle(Geom_Curve) cc = canonical_curve(g.curve, f, l, fit_tol);
-      tools.Append(BRepBuilderAPI_MakeEdge(cc, f, l).Edge());
+      const GrazingEdge ge = grazing_edge(g, face, fit_tol);
+      const Handle(Geom_Curve)& cc = ge.curve;
+      const double f = ge.first, l = ge.last;
+      tools.Append(ge.edge);
       nlohmann::json gfree = qfree;
       gfree["s"] = {f, l};
       const int vid = variety("interior", "grazing curve (n . v = 0) on entity face " + std::to_string(k) +
