@@ -107,6 +107,22 @@ ProfilePoint profile(const Carried& p, const OrbitFrame& ax, double b) {
   return {m, dm};
 }
 
+/// Samples of a profile for finding where it crosses: N + 1 points evenly spaced in its parameter.
+constexpr int kSamples = 96;
+
+/// The profile's sample points, and the largest distance of a profile point halfway between two
+/// samples from their chord (a bound on how far the polyline strays from the profile).
+double sampled_profile(const Carried& p, const OrbitFrame& ax, std::vector<Eigen::Vector2d>& m) {
+  m.resize(kSamples + 1);
+  for (int k = 0; k <= kSamples; ++k) m[k] = profile(p, ax, p.b0 + (p.b1 - p.b0) * k / kSamples).m;
+  double sag = 0;
+  for (int k = 0; k < kSamples; ++k) {
+    const Eigen::Vector2d mid = profile(p, ax, p.b0 + (p.b1 - p.b0) * (k + 0.5) / kSamples).m;
+    sag = std::max(sag, (mid - 0.5 * (m[k] + m[k + 1])).norm());
+  }
+  return sag;
+}
+
 /// Closest points of segments [p, p + d] and [q, q + e] in the plane: (s, t) in [0, 1]^2.
 std::pair<double, double> closest_on_segments(const Eigen::Vector2d& p, const Eigen::Vector2d& d,
                                               const Eigen::Vector2d& q, const Eigen::Vector2d& e) {
@@ -274,14 +290,9 @@ std::optional<OrbitPatch> orbit_patch(const TopoDS_Face& face, const ScrewJoint&
 std::vector<double> profile_self_crossings(const OrbitPatch& patch, const ScrewJoint& j, double boundary_tol) {
   const OrbitFrame ax(j);
   const Carried p(patch);
-  constexpr int N = 96;
-  std::vector<Eigen::Vector2d> m(N + 1);
-  for (int k = 0; k <= N; ++k) m[k] = profile(p, ax, p.b0 + (p.b1 - p.b0) * k / N).m;
-  double sag = 0;
-  for (int k = 0; k < N; ++k) {
-    const Eigen::Vector2d mid = profile(p, ax, p.b0 + (p.b1 - p.b0) * (k + 0.5) / N).m;
-    sag = std::max(sag, (mid - 0.5 * (m[k] + m[k + 1])).norm());
-  }
+  constexpr int N = kSamples;
+  std::vector<Eigen::Vector2d> m;
+  const double sag = sampled_profile(p, ax, m);
   const double near = 8 * sag + 10 * boundary_tol, step = (p.b1 - p.b0) / N;
   std::vector<double> cuts;
   for (int i = 0; i < N; ++i)
@@ -350,20 +361,9 @@ std::optional<std::vector<TopoDS_Edge>> orbit_section(const OrbitPatch& patch_a,
                                                       const ScrewJoint& j, double boundary_tol) {
   const OrbitFrame ax(j);
   const Carried a(patch_a), b(patch_b);
-  constexpr int N = 96;
-  auto samples = [&](const Carried& p, std::vector<Eigen::Vector2d>& m, double& sag) {
-    m.resize(N + 1);
-    for (int k = 0; k <= N; ++k) m[k] = profile(p, ax, p.b0 + (p.b1 - p.b0) * k / N).m;
-    sag = 0;
-    for (int k = 0; k < N; ++k) {
-      const Eigen::Vector2d mid = profile(p, ax, p.b0 + (p.b1 - p.b0) * (k + 0.5) / N).m;
-      sag = std::max(sag, (mid - 0.5 * (m[k] + m[k + 1])).norm());
-    }
-  };
+  constexpr int N = kSamples;
   std::vector<Eigen::Vector2d> ma, mb;
-  double sag_a, sag_b;
-  samples(a, ma, sag_a);
-  samples(b, mb, sag_b);
+  const double sag_a = sampled_profile(a, ax, ma), sag_b = sampled_profile(b, ax, mb);
   const double near = 4 * (sag_a + sag_b) + 10 * boundary_tol;
 
   // One profile (pieces of one curve's sweep): the faces meet along an edge across the orbits at most.
