@@ -78,8 +78,6 @@ TopoDS_Edge refitted_section_edge(const TopoDS_Edge& e, const TopoDS_Face& a, co
     if (!q || q->Distance(p) > stray) return std::nullopt;
     return q;
   };
-  Handle(Geom_BSplineCurve) best;
-  double best_worst = 1e300;
   for (int m = 32; m <= 512; m *= 2) {
     TColgp_Array1OfPnt pts(1, m + 1);
     bool ok = true;
@@ -101,21 +99,15 @@ TopoDS_Edge refitted_section_edge(const TopoDS_Edge& e, const TopoDS_Face& a, co
       if (proj.NbPoints() == 0) ok = false;
       else worst = std::max(worst, proj.LowerDistance());
     }
-    if (!ok) continue;
-    if (worst < best_worst) {
-      best = curve;
-      best_worst = worst;
-    }
-    if (worst <= tol) break;
+    if (!ok || worst > tol) continue;
+    BRepBuilderAPI_MakeEdge mk(curve);
+    if (!mk.IsDone()) return e;
+    *err = worst;
+    TopoDS_Edge out = mk.Edge();
+    out.Orientation(e.Orientation());
+    return out;
   }
-  // the closest fit, when none met tol but one is closer than OCCT's curve (its error is measured)
-  if (best.IsNull() || best_worst >= BRep_Tool::Tolerance(e)) return e;
-  BRepBuilderAPI_MakeEdge mk(best);
-  if (!mk.IsDone()) return e;
-  *err = best_worst;
-  TopoDS_Edge out = mk.Edge();
-  out.Orientation(e.Orientation());
-  return out;
+  return e;
 }
 
 }  // namespace sweep::occt

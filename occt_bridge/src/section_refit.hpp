@@ -9,10 +9,9 @@
 namespace sweep::occt {
 
 /// Section edge e of faces a and b (with curves on both) with its curve refitted to within `tol`
-/// of both surfaces when its tolerance exceeds `above` (or, when no fit meets `tol`, the closest
-/// fit if it is closer than e's tolerance); e itself when that is not needed, the refit does not
-/// converge or no fit comes closer. *err receives the refitted curve's largest distance from the
-/// true intersection (0 when e is returned).
+/// of both surfaces when its tolerance exceeds `above`; e itself when that is not needed or the
+/// refit does not converge. *err receives the refitted curve's largest distance from the true
+/// intersection (0 when e is returned).
 TopoDS_Edge refitted_section_edge(const TopoDS_Edge& e, const TopoDS_Face& a, const TopoDS_Face& b, double tol,
                                   double above, double* err);
 
