@@ -16,7 +16,7 @@
 #include <iostream>
 #include <string>
 
-#include "internal.hpp"
+#include "base/internal.hpp"
 #include "sweep/spec.hpp"
 
 namespace {

@@ -10,7 +10,7 @@
 #include <TopoDS.hxx>
 #include <catch2/catch.hpp>
 
-#include "internal.hpp"
+#include "base/internal.hpp"
 
 namespace {
 

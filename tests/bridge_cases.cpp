@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "internal.hpp"
+#include "base/internal.hpp"
 #include "occt_bridge/sweeper.hpp"
 #include "sweep/error.hpp"
 #include "sweep/membership.hpp"

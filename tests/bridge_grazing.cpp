@@ -8,7 +8,7 @@
 #include <cmath>
 #include <random>
 
-#include "internal.hpp"
+#include "base/internal.hpp"
 
 namespace {
 

@@ -24,7 +24,7 @@
 #include <catch2/catch.hpp>
 
 #include "occt_bridge/sweeper.hpp"
-#include "orbit_section.hpp"
+#include "faces/orbit_section.hpp"
 #include "util/random_one_joint.hpp"
 
 using namespace sweep;

@@ -8,7 +8,7 @@
 #include <TopoDS.hxx>
 #include <catch2/catch.hpp>
 
-#include "section_refit.hpp"
+#include "faces/section_refit.hpp"
 
 using sweep::occt::refitted_section_edge;
 

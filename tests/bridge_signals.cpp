@@ -6,7 +6,7 @@
 #include <string>
 
 #include <catch2/catch.hpp>
-#include "internal.hpp"
+#include "base/internal.hpp"
 
 namespace {
 

@@ -9,7 +9,7 @@
 #include <cmath>
 #include <random>
 
-#include "internal.hpp"
+#include "base/internal.hpp"
 
 namespace {
 

@@ -1,4 +1,4 @@
-// Merging the pieces of one surface after an arrangement split them (occt_bridge/src/unify.cpp).
+// Merging the pieces of one surface after an arrangement split them (occt_bridge/src/faces/unify.cpp).
 #include <BRepAlgoAPI_Fuse.hxx>
 #include <BRepAlgoAPI_Splitter.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
@@ -16,7 +16,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "internal.hpp"
+#include "base/internal.hpp"
 
 namespace {
 

@@ -11,7 +11,7 @@
 #include "sweep/orbit.hpp"
 #include "sweep/settings.hpp"
 #include "sweep/spec.hpp"
-#include "verdict.hpp"
+#include "verdict/verdict.hpp"
 
 using namespace sweep;
 using namespace sweep::occt;

@@ -1,0 +1,676 @@
+// One stage built from its sweep boundary (see boundary_sweep.hpp).
+#include "arrangement/boundary_sweep.hpp"
+
+#include <BRepAdaptor_Surface.hxx>
+#include <BRepAlgoAPI_BuilderAlgo.hxx>
+#include <BRepAlgoAPI_Section.hxx>
+#include <BRepAlgoAPI_Splitter.hxx>
+#include <BRepBndLib.hxx>
+#include <BRepBuilderAPI_MakeEdge.hxx>
+#include <BRepBuilderAPI_MakeSolid.hxx>
+#include <BRepBuilderAPI_Sewing.hxx>
+#include <BRepBuilderAPI_Transform.hxx>
+#include <BRepClass3d_SolidClassifier.hxx>
+#include <BRepLProp_SLProps.hxx>
+#include <BRepTools.hxx>
+#include <BRepTopAdaptor_FClass2d.hxx>
+#include <BRep_Builder.hxx>
+#include <BRep_Tool.hxx>
+#include <Geom2d_Curve.hxx>
+#include <Geom_Line.hxx>
+#include <ShapeAnalysis_Surface.hxx>
+#include <ShapeFix_Solid.hxx>
+#include <Standard_Failure.hxx>
+#include <BRepCheck_Analyzer.hxx>
+#include <BRepBuilderAPI_Copy.hxx>
+#include <ShapeUpgrade_UnifySameDomain.hxx>
+#include <TopExp.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Compound.hxx>
+#include <TopoDS_Shell.hxx>
+#include <gp_Cylinder.hxx>
+#include <gp_Pln.hxx>
+#include <gp_Sphere.hxx>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cmath>
+#include <functional>
+#include <map>
+#include <numeric>
+#include <optional>
+
+#include "faces/orbit_section.hpp"
+#include "faces/section_refit.hpp"
+#include "base/stop.hpp"
+#include "sweep/error.hpp"
+
+namespace sweep::occt {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+/// A point of a face with its outward normal (the face's orientation applied).
+struct SurfacePoint {
+  gp_Pnt p;
+  gp_Vec n;
+};
+/// Appends the point of face f at uv with its outward normal, when the normal is defined.
+bool add_surface_point(const BRepAdaptor_Surface& S, const TopoDS_Face& f, const gp_Pnt2d& uv,
+                       std::vector<SurfacePoint>& out) {
+  BRepLProp_SLProps props(S, uv.X(), uv.Y(), 1, 1e-9);
+  if (!props.IsNormalDefined()) return false;
+  gp_Vec nn(props.Normal());
+  if (f.Orientation() == TopAbs_REVERSED) nn.Reverse();
+  out.push_back({props.Value(), nn});
+  return true;
+}
+
+/// Points inside a face with their outward normals, on an n x n grid of its parameter box.
+std::vector<SurfacePoint> face_samples(const TopoDS_Face& f, int n) {
+  std::vector<SurfacePoint> out;
+  double u0, u1, v0, v1;
+  BRepTools::UVBounds(f, u0, u1, v0, v1);
+  BRepTopAdaptor_FClass2d fc(f, 1e-9);
+  BRepAdaptor_Surface S(f);
+  for (int a = 0; a < n; ++a)
+    for (int b = 0; b < n; ++b) {
+      // an irrational offset keeps the grid off the middle lines of symmetric faces
+      const gp_Pnt2d uv(u0 + (u1 - u0) * (a + 0.5 + 0.1180339887 * ((b % 3) - 1)) / n,
+                        v0 + (v1 - v0) * (b + 0.5 + 0.0729490168 * ((a % 3) - 1)) / n);
+      if (fc.Perform(uv) == TopAbs_IN) add_surface_point(S, f, uv, out);
+    }
+  return out;
+}
+
+/// Points inside a slender face that the grid of face_samples misses: from points along its edges,
+/// steps of shrinking length across them in the parameter plane, kept where the step lands inside;
+/// up to `count` of them, with outward normals.
+std::vector<SurfacePoint> edge_samples(const TopoDS_Face& f, int count) {
+  std::vector<SurfacePoint> out;
+  BRepTopAdaptor_FClass2d fc(f, 1e-12);
+  BRepAdaptor_Surface S(f);
+  for (TopExp_Explorer ex(f, TopAbs_EDGE); ex.More() && int(out.size()) < count; ex.Next()) {
+    double a, b;
+    const Handle(Geom2d_Curve) pc = BRep_Tool::CurveOnSurface(TopoDS::Edge(ex.Current()), f, a, b);
+    if (pc.IsNull()) continue;
+    const double chord = pc->Value(a).Distance(pc->Value(b));
+    if (!(chord > 0)) continue;
+    for (double at : {0.5, 0.3, 0.7}) {
+      gp_Pnt2d uv;
+      gp_Vec2d d;
+      pc->D1(a + at * (b - a), uv, d);
+      if (d.Magnitude() == 0) continue;
+      const gp_Vec2d across = gp_Vec2d(-d.Y(), d.X()).Normalized();
+      bool found = false;
+      for (double h = 0.25; h > 1e-4 && !found; h /= 3)
+        for (int side : {1, -1}) {
+          const gp_Pnt2d q = uv.Translated(across * (side * h * chord));
+          if (fc.Perform(q) != TopAbs_IN || !add_surface_point(S, f, q, out)) continue;
+          found = true;
+          break;
+        }
+    }
+  }
+  return out;
+}
+
+/// How the motion meets a face: it leaves the face behind where n . v < 0 (Back), moves into what
+/// lies in front of it where n . v > 0 (Front), slides within it where n . v = 0 everywhere.
+enum class Facing { Back, Front, Slides, Mixed, Unknown };
+
+Facing facing_of(const TopoDS_Face& f, const ScrewJoint& j, double size) {
+  int pos = 0, neg = 0, zero = 0;
+  for (const auto& s : face_samples(f, 7)) {
+    const Eigen::Vector3d v = j.velocity(to_eigen(s.p));
+    const double speed = v.norm();
+    if (speed < 1e-12 * size) continue;  // on the axis
+    const double c = to_eigen(s.n).dot(v) / speed;
+    if (c > 1e-9) ++pos;
+    else if (c < -1e-9) ++neg;
+    else ++zero;
+  }
+  if (pos == 0 && neg == 0) return zero > 0 ? Facing::Slides : Facing::Unknown;
+  if (pos > 0 && neg > 0) return Facing::Mixed;
+  return pos > 0 ? Facing::Front : Facing::Back;
+}
+
+/// The body with its faces split at their grazing curves (shared edges kept); `grazing` receives
+/// the number of grazing curves, `fit_error` is raised to their largest measured error.
+TopoDS_Shape split_at_grazing(const TopoDS_Shape& body, const ScrewJoint& j, double fit_tol, double size,
+                              int* grazing, double* fit_error) {
+  TopTools_ListOfShape tools;
+  *grazing = 0;
+  // A face closed on itself (a seam: a cylinder's band, a sphere) is cut in three by exact iso-lines
+  // a third of a period apart, so that every edge has two faces (a seam can be a silhouette; two
+  // cuts, in case a grazing curve falls on one of them).
+  for (TopExp_Explorer ex(body, TopAbs_FACE); ex.More(); ex.Next()) {
+    const TopoDS_Face& f = TopoDS::Face(ex.Current());
+    TopLoc_Location loc;
+    const Handle(Geom_Surface) surf = BRep_Tool::Surface(f, loc);
+    if (surf.IsNull()) continue;
+    double u0, u1, v0, v1;
+    BRepTools::UVBounds(f, u0, u1, v0, v1);
+    bool useam = false, vseam = false;
+    for (TopExp_Explorer ee(f, TopAbs_EDGE); ee.More(); ee.Next()) {
+      const TopoDS_Edge& e = TopoDS::Edge(ee.Current());
+      if (!BRep_Tool::IsClosed(e, f)) continue;  // (the body's faces are whole: the surface's seam is theirs)
+      double a, b;
+      const Handle(Geom2d_Curve) pc = BRep_Tool::CurveOnSurface(e, f, a, b);
+      if (pc.IsNull()) continue;
+      const gp_Pnt2d p = pc->Value(a), q = pc->Value(b);
+      if (std::abs(p.X() - q.X()) < 1e-9 * (u1 - u0 + 1)) useam = true;
+      else if (std::abs(p.Y() - q.Y()) < 1e-9 * (v1 - v0 + 1)) vseam = true;
+    }
+    for (double frac : {1.0 / 3, 2.0 / 3}) {
+      if (useam) {
+        Handle(Geom_Curve) iso = surf->UIso(u0 + frac * (u1 - u0));
+        if (!iso.IsNull()) tools.Append(BRepBuilderAPI_MakeEdge(iso, v0, v1).Edge().Moved(loc));
+      }
+      if (vseam) {
+        Handle(Geom_Curve) iso = surf->VIso(v0 + frac * (v1 - v0));
+        if (!iso.IsNull()) tools.Append(BRepBuilderAPI_MakeEdge(iso, u0, u1).Edge().Moved(loc));
+      }
+    }
+  }
+  for (TopExp_Explorer ex(body, TopAbs_FACE); ex.More(); ex.Next()) {
+    for (const auto& g : grazing_curves(TopoDS::Face(ex.Current()), j, fit_tol, size)) {
+      tools.Append(grazing_edge(g, TopoDS::Face(ex.Current()), fit_tol).edge);
+      *fit_error = std::max(*fit_error, g.error);
+      ++*grazing;
+    }
+  }
+  if (tools.IsEmpty()) return body;
+  BRepAlgoAPI_Splitter splitter;
+  TopTools_ListOfShape args;
+  args.Append(body);
+  splitter.SetArguments(args);
+  splitter.SetTools(tools);
+  splitter.SetNonDestructive(true);
+  splitter.SetFuzzyValue(1e-9 * size);
+  splitter.Build(stop_range());
+  check_stop();
+  if (!splitter.IsDone() || splitter.HasErrors()) throw ComputeError("the body's faces could not be split at their grazing curves");
+  return splitter.Shape();
+}
+
+/// Whether two faces lie on one analytic surface (within eps).
+bool same_surface(const TopoDS_Face& a, const TopoDS_Face& b, double eps) {
+  const BRepAdaptor_Surface A(a, false), B(b, false);
+  if (A.GetType() != B.GetType()) return false;
+  auto same_point = [&](const gp_Pnt& p, const gp_Pnt& q) { return p.Distance(q) <= eps; };
+  auto same_axis = [&](const gp_Ax1& x, const gp_Ax1& y) {
+    return x.Direction().IsParallel(y.Direction(), 1e-9) &&
+           gp_Lin(x).Distance(y.Location()) <= eps;
+  };
+  switch (A.GetType()) {
+    case GeomAbs_Plane: {
+      const gp_Pln p = A.Plane(), q = B.Plane();
+      return p.Axis().Direction().IsParallel(q.Axis().Direction(), 1e-9) && p.Distance(q.Location()) <= eps;
+    }
+    case GeomAbs_Cylinder:
+      return same_axis(A.Cylinder().Axis(), B.Cylinder().Axis()) &&
+             std::abs(A.Cylinder().Radius() - B.Cylinder().Radius()) <= eps;
+    case GeomAbs_Sphere:
+      return same_point(A.Sphere().Location(), B.Sphere().Location()) &&
+             std::abs(A.Sphere().Radius() - B.Sphere().Radius()) <= eps;
+    case GeomAbs_Cone: {
+      const gp_Cone c = A.Cone(), d = B.Cone();
+      return same_axis(c.Axis(), d.Axis()) && same_point(c.Apex(), d.Apex()) &&
+             std::abs(c.SemiAngle() - d.SemiAngle()) <= 1e-9;
+    }
+    case GeomAbs_Torus: {
+      const gp_Torus t = A.Torus(), u = B.Torus();
+      return same_axis(t.Axis(), u.Axis()) && same_point(t.Location(), u.Location()) &&
+             std::abs(t.MajorRadius() - u.MajorRadius()) <= eps && std::abs(t.MinorRadius() - u.MinorRadius()) <= eps;
+    }
+    default:
+      return false;
+  }
+}
+
+Bnd_Box box_of(const TopoDS_Shape& s, double gap) {
+  Bnd_Box b;
+  BRepBndLib::Add(s, b);
+  b.Enlarge(gap);
+  return b;
+}
+
+/// Whether edge e (a section curve with a pcurve on f, or a curve on it) lies along f's boundary,
+/// within tol at five of its points.
+bool on_boundary(const TopoDS_Edge& e, const TopoDS_Face& f, double tol) {
+  double first, last;
+  const Handle(Geom2d_Curve) pc = BRep_Tool::CurveOnSurface(e, f, first, last);
+  if (pc.IsNull()) return false;
+  const BRepAdaptor_Surface S(f, false);
+  const double tu = S.UResolution(tol), tv = S.VResolution(tol);
+  BRepTopAdaptor_FClass2d fc(f, std::max(tu, tv));
+  for (int k = 0; k < 5; ++k) {
+    const gp_Pnt2d uv = pc->Value(first + (last - first) * (k + 0.5) / 5);
+    if (fc.Perform(uv) != TopAbs_ON) return false;
+  }
+  return true;
+}
+
+/// A candidate face and what it is.
+struct Candidate {
+  TopoDS_Face face;
+  int variety = -1;
+  enum class Kind { Start, End, Swept } kind = Kind::Swept;
+  Handle(Geom_Surface) sheet;  ///< a piece of a face through itself: the sheet it lies on
+};
+
+/// The candidates with each face swept along the joint's orbits whose profile crosses itself (an
+/// extrusion of a curve whose projection along the direction loops: it passes through itself) cut
+/// there into embedded pieces, each with the sheet it lies on.
+std::vector<Candidate> cut_where_through_itself(const std::vector<Candidate>& cands, const ScrewJoint& j, double eps,
+                                                double boundary_tol) {
+  std::vector<Candidate> out;
+  for (const Candidate& c : cands) {
+    if (c.kind == Candidate::Kind::Swept)
+      if (const auto patch = orbit_patch(c.face, j, eps)) {
+        const std::vector<double> at = profile_self_crossings(*patch, j, boundary_tol);
+        const std::vector<PatchPiece> pieces = at.empty() ? std::vector<PatchPiece>{} : patch_pieces(*patch, at);
+        for (const PatchPiece& pp : pieces) out.push_back({pp.face, c.variety, c.kind, pp.sheet});
+        if (!pieces.empty()) continue;
+      }
+    out.push_back(c);
+  }
+  return out;
+}
+
+/// The solid with the pieces of one analytic surface (the halves of a closed face, the pieces
+/// sections made) merged into one face each, when every face is analytic and the merged solid is
+/// valid; else the solid as it is. (Spline-bounded faces are left alone: merging them can stall.)
+TopoDS_Shape merged_analytic_faces(const TopoDS_Shape& solid) {
+  for (TopExp_Explorer ex(solid, TopAbs_FACE); ex.More(); ex.Next()) {
+    const GeomAbs_SurfaceType t = BRepAdaptor_Surface(TopoDS::Face(ex.Current())).GetType();
+    if (t != GeomAbs_Plane && t != GeomAbs_Cylinder && t != GeomAbs_Cone && t != GeomAbs_Sphere && t != GeomAbs_Torus)
+      return solid;
+  }
+  try {
+    ShapeUpgrade_UnifySameDomain unify(BRepBuilderAPI_Copy(solid).Shape(), true, true, true);
+    unify.Build();
+    const TopoDS_Shape merged = unify.Shape();
+    if (!merged.IsNull() && BRepCheck_Analyzer(merged).IsValid()) return merged;
+  } catch (const Standard_Failure&) {
+  }
+  return solid;
+}
+
+}  // namespace
+
+BoundarySweep boundary_sweep(const TopoDS_Shape& body, const ScrewJoint& j, double T, const PointTestMaker& member,
+                             double size, double tol, const Settings& settings, int stage, int joint_no) {
+  BoundarySweep out;
+  const auto t0 = Clock::now();
+  const double fit_tol = settings.fit_fraction * tol;
+  const bool full_turn = j.type == JointType::Revolute && T >= 2 * M_PI - 1e-12;
+  const std::string qn = "q" + std::to_string(joint_no);
+  auto variety = [&](const std::string& type, const std::string& what, nlohmann::json fixed, nlohmann::json free) {
+    out.varieties.push_back({stage, joint_no, type, what, std::move(fixed), std::move(free)});
+    return int(out.varieties.size()) - 1;
+  };
+  const nlohmann::json qfree = {{qn, {0.0, T}}};
+  const int start_id = variety("limit", "the entity at the start of joint " + std::to_string(joint_no) + "'s range",
+                               {{qn, 0.0}}, nlohmann::json::object());
+  const int end_id = full_turn ? -1
+                               : variety("limit", "the entity at the end of joint " + std::to_string(joint_no) + "'s range",
+                                         {{qn, T}}, nlohmann::json::object());
+
+  // 1. The body's faces split at their grazing curves, each piece facing one way. Closed faces are
+  //    halved first, so that every edge has two faces (a seam can be a silhouette).
+  int grazing = 0;
+  const TopoDS_Shape split = split_at_grazing(body, j, fit_tol, size, &grazing, &out.fit_error);
+  TopTools_IndexedMapOfShape pieces;
+  TopExp::MapShapes(split, TopAbs_FACE, pieces);
+  std::vector<Facing> face_facing(pieces.Extent() + 1, Facing::Unknown);
+  for (int k = 1; k <= pieces.Extent(); ++k) {
+    face_facing[k] = facing_of(TopoDS::Face(pieces(k)), j, size);
+    if (face_facing[k] == Facing::Mixed) {
+      out.failure = "a face of the body could not be split where the motion becomes tangent to it";
+      return out;
+    }
+  }
+
+  std::vector<Candidate> cands;
+  const Eigen::Isometry3d at_end = j.transform(T);
+  for (int k = 1; k <= pieces.Extent(); ++k) {
+    const TopoDS_Face& f = TopoDS::Face(pieces(k));
+    if (full_turn) continue;
+    const Facing fa = face_facing[k];
+    // the start and end copies of faces the motion slides within bound the region they sweep
+    if (fa == Facing::Back || fa == Facing::Slides || fa == Facing::Unknown)
+      cands.push_back({f, start_id, Candidate::Kind::Start, {}});
+    if (fa == Facing::Front || fa == Facing::Slides || fa == Facing::Unknown)
+      cands.push_back({TopoDS::Face(moved(f, at_end)), end_id, Candidate::Kind::End, {}});
+  }
+
+  // 2. The sweeps of the silhouette: edges between a face the motion leaves and one it moves into
+  //    (grazing curves among them), and the edges of faces it slides within.
+  TopTools_IndexedDataMapOfShapeListOfShape edge_faces;
+  TopExp::MapShapesAndAncestors(split, TopAbs_EDGE, TopAbs_FACE, edge_faces);
+  int edge_no = 0;
+  for (int k = 1; k <= edge_faces.Extent(); ++k) {
+    const TopoDS_Edge& e = TopoDS::Edge(edge_faces.FindKey(k));
+    if (BRep_Tool::Degenerated(e)) continue;
+    const TopTools_ListOfShape& fl = edge_faces(k);
+    std::vector<Facing> sides;
+    bool seam = false;
+    for (TopTools_ListIteratorOfListOfShape it(fl); it.More(); it.Next()) {
+      const TopoDS_Face& f = TopoDS::Face(it.Value());
+      // a seam of this face: the edge bounds it twice (BRep_Tool::IsClosed asks the surface, which
+      // the pieces of one closed face share)
+      int uses = 0;
+      for (TopExp_Explorer ee(f, TopAbs_EDGE); ee.More(); ee.Next()) uses += ee.Current().IsSame(e);
+      if (uses > 1) seam = true;
+      sides.push_back(face_facing[pieces.FindIndex(f)]);
+    }
+    if (std::getenv("SWEEP_DEBUG_EDGES")) {
+      double f0, l0;
+      Handle(Geom_Curve) c0 = BRep_Tool::Curve(e, f0, l0);
+      gp_Pnt m = c0.IsNull() ? gp_Pnt() : c0->Value(0.5 * (f0 + l0));
+      std::fprintf(stderr, "edge %d at (%.3f %.3f %.3f) seam %d sides", k, m.X(), m.Y(), m.Z(), int(seam));
+      for (Facing x : sides) std::fprintf(stderr, " %d", int(x));
+      std::fprintf(stderr, "\n");
+    }
+    if (seam) continue;
+    bool front = false, back = false, slides = false;
+    for (Facing s : sides) {
+      front = front || s == Facing::Front;
+      back = back || s == Facing::Back;
+      slides = slides || s == Facing::Slides || s == Facing::Unknown;
+    }
+    if (!(front && back) && !slides && sides.size() == 2) continue;  // inside the start or the end copy
+    double f, l;
+    Handle(Geom_Curve) c = BRep_Tool::Curve(e, f, l);
+    if (c.IsNull()) continue;
+    c = canonical_curve(c, f, l, std::max(fit_tol, 1e-10 * size));
+    gp_Pln plane;
+    const bool planar = !c->IsKind(STANDARD_TYPE(Geom_Line)) && keeps_plane_of(c, f, l, j, size, &plane);
+    double err = 0;
+    const std::vector<TopoDS_Face> sw =
+        planar ? planar_curve_sweep(c, f, l, j, T, plane, size) : sweep_curve(c, f, l, j, T, fit_tol, &err);
+    out.fit_error = std::max(out.fit_error, err);
+    if (sw.empty()) continue;
+    nlohmann::json efree = qfree;
+    efree["s"] = {f, l};
+    // a grazing curve lies between two pieces of one face of the body
+    TopLoc_Location l1, l2;
+    const bool is_grazing = sides.size() == 2 && BRep_Tool::Surface(TopoDS::Face(fl.First()), l1) ==
+                                                     BRep_Tool::Surface(TopoDS::Face(fl.Last()), l2);
+    const int vid = variety(is_grazing ? "interior" : "boundary",
+                            std::string(is_grazing ? "grazing curve (n . v = 0)" : "edge") + " " + std::to_string(++edge_no) +
+                                " swept by joint " + std::to_string(joint_no),
+                            nlohmann::json::object(), efree);
+    for (const auto& face : sw) cands.push_back({face, vid, Candidate::Kind::Swept, {}});
+  }
+  out.seconds["candidates"] = since(t0);
+
+  // 3. Candidates on one analytic surface (regions swept within a surface, sweeps of curves that
+  //    revolve into one surface) overlap: each such group is replaced by its arrangement, whose
+  //    faces do not overlap.
+  const auto t_groups = Clock::now();
+  const double eps = 1e-9 * size;
+  {
+    const std::size_t n = cands.size();
+    std::vector<int> parent(n);
+    std::iota(parent.begin(), parent.end(), 0);
+    std::function<int(int)> root = [&](int x) { return parent[x] == x ? x : parent[x] = root(parent[x]); };
+    std::vector<Bnd_Box> boxes(n);
+    for (std::size_t i = 0; i < n; ++i) boxes[i] = box_of(cands[i].face, 10 * eps);
+    for (std::size_t a = 0; a < n; ++a)
+      for (std::size_t b = a + 1; b < n; ++b)
+        if (!boxes[a].IsOut(boxes[b]) && same_surface(cands[a].face, cands[b].face, eps)) parent[root(int(b))] = root(int(a));
+    std::map<int, std::vector<std::size_t>> groups;
+    for (std::size_t i = 0; i < n; ++i) groups[root(int(i))].push_back(i);
+    std::vector<Candidate> merged;
+    for (const auto& [r, members] : groups) {
+      if (members.size() == 1) {
+        merged.push_back(cands[members[0]]);
+        continue;
+      }
+      TopTools_ListOfShape args;
+      for (std::size_t i : members) args.Append(cands[i].face);
+      BRepAlgoAPI_BuilderAlgo gf;
+      gf.SetArguments(args);
+      gf.SetNonDestructive(true);
+      gf.SetFuzzyValue(eps);
+      gf.Build(stop_range());
+      check_stop();
+      if (!gf.IsDone() || gf.HasErrors()) {
+        out.failure = "the arrangement of candidate faces on one surface failed";
+        return out;
+      }
+      TopTools_IndexedMapOfShape faces;
+      TopExp::MapShapes(gf.Shape(), TopAbs_FACE, faces);
+      // (the arrangement's faces may cross the start or the end copy: they are swept regions now)
+      const Candidate& first = cands[members[0]];
+      for (int k = 1; k <= faces.Extent(); ++k)
+        merged.push_back({TopoDS::Face(faces(k)), first.variety, Candidate::Kind::Swept, {}});
+    }
+    cands.swap(merged);
+  }
+  const double boundary_tol = std::max(100 * eps, 10 * out.fit_error);
+  if (settings.orbit_sections) cands = cut_where_through_itself(cands, j, eps, boundary_tol);
+  out.candidates = int(cands.size());
+  out.seconds["groups"] = since(t_groups);
+
+  // 4. Where candidates cross: the section of every pair whose boxes meet (the start copies among
+  //    themselves and the end copies among themselves are faces of one solid and do not cross).
+  const auto t_sec = Clock::now();
+  const std::size_t n = cands.size();
+  std::vector<Bnd_Box> boxes(n);
+  for (std::size_t i = 0; i < n; ++i) boxes[i] = box_of(cands[i].face, 10 * eps);
+  std::vector<std::pair<std::size_t, std::size_t>> pairs;
+  for (std::size_t a = 0; a < n; ++a)
+    for (std::size_t b = a + 1; b < n; ++b) {
+      if (cands[a].kind != Candidate::Kind::Swept && cands[a].kind == cands[b].kind) continue;
+      if (boxes[a].IsOut(boxes[b])) continue;
+      pairs.push_back({a, b});
+    }
+  std::vector<std::vector<TopoDS_Edge>> pair_edges(pairs.size());
+  // which of the pair's faces each edge splits: 1 the first, 2 the second, 3 both
+  std::vector<std::vector<int>> pair_sides(pairs.size());
+  std::vector<char> pair_failed(pairs.size(), 0);
+  std::vector<double> pair_refit_error(pairs.size(), 0.0);
+  // faces swept along a revolute or prismatic joint's orbits cross in circles or segments, found
+  // from their profiles
+  std::vector<std::optional<OrbitPatch>> carried(n);
+  if (settings.orbit_sections)
+    for (std::size_t i = 0; i < n; ++i) carried[i] = orbit_patch(cands[i].face, j, eps);
+  parallel_for(pairs.size(), [&]() -> std::function<void(std::size_t)> {
+    return [&](std::size_t k) {
+      const TopoDS_Face& fa = cands[pairs[k].first].face;
+      const TopoDS_Face& fb = cands[pairs[k].second].face;
+      if (carried[pairs[k].first] && carried[pairs[k].second]) {
+        if (auto arcs = orbit_section(*carried[pairs[k].first], *carried[pairs[k].second], j, boundary_tol)) {
+          pair_edges[k] = std::move(*arcs);
+          pair_sides[k].assign(pair_edges[k].size(), 3);
+          return;
+        }
+      }
+      BRepAlgoAPI_Section sec(fa, fb, false);
+      sec.SetNonDestructive(true);
+      sec.SetFuzzyValue(eps);
+      sec.Approximation(true);
+      sec.ComputePCurveOn1(true);
+      sec.ComputePCurveOn2(true);
+      sec.Build(stop_range());
+      check_stop();
+      if (!sec.IsDone() || sec.HasErrors()) {
+        pair_failed[k] = 1;
+        return;
+      }
+      for (TopExp_Explorer ex(sec.Shape(), TopAbs_EDGE); ex.More(); ex.Next()) {
+        const TopoDS_Edge& e = TopoDS::Edge(ex.Current());
+        // a section along where the faces meet by construction (a grazing curve, where a swept face
+        // touches the face it came from) splits neither; one along the boundary of one face (where
+        // that face meets its neighbour) splits the other
+        const int sides = (on_boundary(e, fa, boundary_tol) ? 0 : 1) | (on_boundary(e, fb, boundary_tol) ? 0 : 2);
+        if (sides == 0) continue;
+        // an approximation that strays above the tolerance is refitted onto both surfaces
+        double err = 0;
+        pair_edges[k].push_back(refitted_section_edge(e, fa, fb, fit_tol, 0.1 * tol, &err));
+        pair_sides[k].push_back(sides);
+        pair_refit_error[k] = std::max(pair_refit_error[k], err);
+      }
+    };
+  });
+  for (std::size_t k = 0; k < pairs.size(); ++k)
+    if (pair_failed[k]) {
+      out.failure = "the intersection of two candidate faces failed";
+      return out;
+    }
+  for (double err : pair_refit_error) out.fit_error = std::max(out.fit_error, err);
+  std::vector<std::vector<TopoDS_Edge>> tools(n);
+  for (std::size_t k = 0; k < pairs.size(); ++k)
+    for (std::size_t m = 0; m < pair_edges[k].size(); ++m) {
+      if (pair_sides[k][m] & 1) tools[pairs[k].first].push_back(pair_edges[k][m]);
+      if (pair_sides[k][m] & 2) tools[pairs[k].second].push_back(pair_edges[k][m]);
+    }
+  out.seconds["sections"] = since(t_sec);
+
+  // 5. Each candidate split by its curves; each piece kept when exactly one side is in the set.
+  const auto t_split = Clock::now();
+  std::vector<std::vector<TopoDS_Face>> split_faces(n);
+  std::vector<char> split_failed(n, 0);
+  parallel_for(n, [&]() -> std::function<void(std::size_t)> {
+    return [&](std::size_t i) {
+      if (tools[i].empty()) {
+        split_faces[i].push_back(cands[i].face);
+        return;
+      }
+      BRepAlgoAPI_Splitter sp;
+      TopTools_ListOfShape args, tl;
+      args.Append(cands[i].face);
+      for (const auto& e : tools[i]) tl.Append(e);
+      sp.SetArguments(args);
+      sp.SetTools(tl);
+      sp.SetNonDestructive(true);
+      sp.SetFuzzyValue(eps);
+      sp.Build(stop_range());
+      check_stop();
+      if (!sp.IsDone() || sp.HasErrors()) {
+        split_failed[i] = 1;
+        return;
+      }
+      for (TopExp_Explorer ex(sp.Shape(), TopAbs_FACE); ex.More(); ex.Next())
+        split_faces[i].push_back(TopoDS::Face(ex.Current()));
+    };
+  });
+  for (std::size_t i = 0; i < n; ++i)
+    if (split_failed[i]) {
+      out.failure = "a candidate face could not be split where others cross it";
+      return out;
+    }
+  struct Piece {
+    TopoDS_Face face;
+    int variety;
+    Handle(Geom_Surface) sheet;
+  };
+  std::vector<Piece> all;
+  for (std::size_t i = 0; i < n; ++i)
+    for (const auto& f : split_faces[i]) all.push_back({f, cands[i].variety, cands[i].sheet});
+  out.pieces = int(all.size());
+  out.seconds["splitting"] = since(t_split);
+
+  const auto t_cls = Clock::now();
+  const double delta = settings.classify_offset * size;
+  // 1 keep as is, -1 keep reversed, 0 drop, 2 undecided
+  std::vector<int> keep(all.size(), 0);
+  parallel_for(all.size(), [&]() -> std::function<void(std::size_t)> {
+    const PointTest in_set = member();
+    return [&, in_set](std::size_t i) {
+      // the first sample whose two sides answer the same at one and at two offsets; a slender
+      // piece that the grid misses is sampled on a mesh of it
+      auto decide = [&](const std::vector<SurfacePoint>& samples) {
+        for (const auto& s : samples) {
+          const Eigen::Vector3d p = to_eigen(s.p), nn = to_eigen(s.n);
+          const bool out1 = in_set(p + delta * nn), in1 = in_set(p - delta * nn);
+          const bool out2 = in_set(p + 2 * delta * nn), in2 = in_set(p - 2 * delta * nn);
+          if (out1 != out2 || in1 != in2) continue;
+          return out1 == in1 ? 0 : (in1 ? 1 : -1);
+        }
+        return 2;
+      };
+      keep[i] = decide(face_samples(all[i].face, 4));
+      if (keep[i] == 2) keep[i] = decide(edge_samples(all[i].face, 12));
+    };
+  });
+  out.seconds["classification"] = since(t_cls);
+  for (std::size_t i = 0; i < all.size(); ++i)
+    if (keep[i] == 2) {
+      out.failure = "a piece of the boundary could not be classified (it is thinner than the classification offset)";
+      return out;
+    }
+
+  if (const char* dir = std::getenv("SWEEP_DUMP_BOUNDARY")) {  // diagnostics: candidates, pieces, kept pieces
+    auto dump = [&](const std::string& name, const std::function<bool(std::size_t)>& take, std::size_t count,
+                    const std::function<TopoDS_Shape(std::size_t)>& get) {
+      TopoDS_Compound comp;
+      BRep_Builder bb;
+      bb.MakeCompound(comp);
+      for (std::size_t i = 0; i < count; ++i)
+        if (take(i)) bb.Add(comp, get(i));
+      BRepTools::Write(comp, (std::string(dir) + "/" + name + ".brep").c_str());
+    };
+    dump("candidates", [](std::size_t) { return true; }, cands.size(), [&](std::size_t i) { return cands[i].face; });
+    dump("pieces", [](std::size_t) { return true; }, all.size(), [&](std::size_t i) { return all[i].face; });
+    dump("kept", [&](std::size_t i) { return keep[i] != 0; }, all.size(),
+         [&](std::size_t i) { return keep[i] < 0 ? all[i].face.Reversed() : TopoDS_Shape(all[i].face); });
+    TopoDS_Compound tl;
+    BRep_Builder bb;
+    bb.MakeCompound(tl);
+    for (const auto& es : pair_edges)
+      for (const auto& e : es) bb.Add(tl, e);
+    BRepTools::Write(tl, (std::string(dir) + "/sections.brep").c_str());
+  }
+
+  // 6. The kept pieces, oriented outward, sewn into a solid.
+  const auto t_sew = Clock::now();
+  BRepBuilderAPI_Sewing sewing(std::max(1e-7 * size, 10 * out.fit_error));
+  int kept = 0;
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    if (keep[i] == 0) continue;
+    TopoDS_Face f = all[i].sheet.IsNull() ? all[i].face : on_own_sheet(all[i].face, all[i].sheet);
+    if (keep[i] < 0) f = TopoDS::Face(f.Reversed());
+    sewing.Add(f);
+    out.candidate_faces.push_back(f);
+    out.candidate_ids.push_back(all[i].variety);
+    ++kept;
+  }
+  out.kept = kept;
+  if (kept == 0) {
+    out.failure = "no piece of the candidate boundary separates the swept set from its complement";
+    return out;
+  }
+  sewing.Perform(stop_range());
+  check_stop();
+  const TopoDS_Shape sewn = sewing.SewedShape();
+  BRepBuilderAPI_MakeSolid ms;
+  int shells = 0;
+  for (TopExp_Explorer ex(sewn, TopAbs_SHELL); ex.More(); ex.Next()) {
+    ms.Add(TopoDS::Shell(ex.Current()));
+    ++shells;
+  }
+  if (shells == 0) {
+    out.failure = "the kept pieces do not sew into a shell";
+    return out;
+  }
+  ShapeFix_Solid fix;
+  fix.Init(ms.Solid());
+  fix.Perform();
+  out.solid = merged_analytic_faces(fix.Solid());
+  out.seconds["sewing"] = since(t_sew);
+  return out;
+}
+
+}  // namespace sweep::occt

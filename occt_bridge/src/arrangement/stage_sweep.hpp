@@ -1,0 +1,144 @@
+// One stage of the cells path: the solid swept by a body under one joint, in four steps, each in
+// its own file: candidate varieties (stage_candidates.cpp), candidates left out as duplicates or
+// as internal (candidate_pruning.cpp), the arrangement of the rest and the classification of its
+// cells (stage_cells.cpp).
+#pragma once
+
+#include <TopoDS_Edge.hxx>
+#include <TopoDS_Face.hxx>
+#include <TopoDS_Shape.hxx>
+#include <chrono>
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "base/internal.hpp"
+#include "sweep/membership.hpp"
+#include "sweep/orbit.hpp"
+
+namespace sweep::occt {
+
+using Clock = std::chrono::steady_clock;
+inline double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+/// Accumulates seconds per step over stages.
+struct Seconds {
+  nlohmann::json& j;
+  double& operator[](const char* key) {
+    if (!j.contains(key)) j[key] = 0.0;
+    return *j[key].get_ptr<double*>();
+  }
+};
+
+/// Candidate faces left out of the arrangement, with their varieties.
+struct DroppedFaces {
+  std::vector<TopoDS_Face> faces;
+  std::vector<int> ids;
+};
+
+/// The candidate faces of a stage and the varieties they lie on.
+struct Candidates {
+  std::vector<TopoDS_Face> faces;
+  std::vector<int> ids;  ///< variety of each face (index into vars)
+  std::vector<Variety> vars;
+  int varieties = 0;
+  int add_variety(Variety v) {
+    vars.push_back(std::move(v));
+    return int(vars.size()) - 1;
+  }
+  /// Faces of variety `id`; `quadrature`: their areas come from the divergence quadrature
+  /// (cheaper than OCCT's integration on high-degree faces).
+  void add(int id, const std::vector<TopoDS_Face>& fs, bool quadrature = false);
+  /// Keeps the faces whose flag is set; the others go to `dropped` when given.
+  void keep_only(const std::vector<char>& keep, DroppedFaces* dropped = nullptr);
+  /// A face dropped earlier, taken back (its variety already counts it).
+  void restore(const TopoDS_Face& f, int id);
+  /// The varieties' candidate areas (only the varieties report needs them).
+  void compute_areas();
+
+ private:
+  std::vector<bool> by_quadrature;
+};
+
+/// How many candidate faces pruning saw and left out.
+struct PruneCount {
+  int candidates = 0;  ///< candidate faces before pruning
+  int dropped = 0;     ///< left out as internal (some may be restored later)
+};
+
+/// What a stage sweeps and how: `body` (a solid, or faces when dim == 2) under joint j for q in
+/// [0, T]. `sd`, when given, is the entity's signed distance, or `pe` its parametric map, and
+/// `sd_motion` the motion that carries the entity to this stage's swept set (for the membership
+/// test independent of the B-rep).
+struct StageInput {
+  const TopoDS_Shape& body;
+  int dim;
+  const ScrewJoint& j;
+  double T;
+  const SignedDistance* sd;
+  const ParametricEntity* pe;
+  const Motion& sd_motion;
+  double esize;  ///< the body's extent
+  double size;   ///< the model's size
+  double tol;
+  double fit_tol;
+  int stage;
+  int joint_no;
+  bool full_turn() const { return j.type == JointType::Revolute && T >= 2 * M_PI - 1e-12; }
+};
+
+/// The varieties of the body at both ends of the range (hi -1 over a full turn).
+struct LimitIds {
+  int lo = -1, hi = -1;
+};
+
+/// Valid and closed (the checks a directly built solid must pass to be used).
+bool valid_and_closed(const TopoDS_Shape& s);
+
+/// A ball under a screw motion, built directly as a tube about its centre's helix closed by two
+/// half balls (trimmed where neighbouring turns overlap); null when `body` is not one ball or the
+/// build is not valid and closed. `faces` and `roles` (0 tube, 1 start, 2 end) describe it.
+TopoDS_Shape direct_ball_screw(const TopoDS_Shape& body, const ScrewJoint& j, double T, double fit_tol, double size,
+                               double tol, double* fit_err, std::vector<TopoDS_Face>* faces, std::vector<int>* roles);
+
+/// The stage built without an arrangement (a ball under a screw, a face translated along a
+/// direction in which it is a graph) when such a build exists and is valid and closed; its faces
+/// and varieties go to `cand`. Null otherwise (`cand` unchanged).
+TopoDS_Shape direct_stage(const StageInput& in, double& fit_err, Candidates& cand);
+
+/// The candidate varieties of the stage: the sweeps of the body's edges and grazing curves, and
+/// the body's faces (split at the grazing curves) at both ends of the range.
+LimitIds stage_candidates(const StageInput& in, double& fit_err, Candidates& cand);
+
+/// Point membership in the stage's swept set that never looks at a computed solid: the certified
+/// analytic test for primitive solids and parametric entities, else the trajectory test.
+PointTest stage_membership(const StageInput& in);
+/// The trajectory test at offset tol_factor x the model size (one per thread: it keeps OCCT state).
+PointTest stage_trajectory_membership(const StageInput& in, double tol_factor);
+
+/// Membership in the sweep of a primitive (at its start pose) by joint j over [0, T], from its
+/// orbit intervals: one test per thread.
+PointTestMaker orbit_membership(const OrbitSolidPtr& start, const ScrewJoint& j, double T);
+/// Membership in the sweep of a solid (at its start pose) by joint j over [0, T], from each
+/// point's trajectory against the solid's faces: one test per thread.
+PointTestMaker trajectory_membership(const TopoDS_Shape& body, const ScrewJoint& j, double T, double ttol);
+
+/// Leaves out candidates that are the same face reached twice (e.g. by symmetric edges).
+void drop_duplicate_candidates(Candidates& cand, double size);
+/// Leaves out candidates found inside the swept set at sampled points (both sides in the set).
+DroppedFaces prune_internal_candidates(const StageInput& in, LimitIds limits, double fit_err, Candidates& cand);
+/// Dropped candidates that contain a point of one of the edges (within 1e-5 of the model size),
+/// moved back among the candidates; how many.
+int restore_near_edges(const std::vector<TopoDS_Edge>& edges, double size, DroppedFaces& dropped, Candidates& cand);
+
+/// The solid bounded by the arrangement of the candidates: its cells in the swept set, or the split
+/// faces that separate the set from its complement. Throws ComputeError when neither can be built.
+TopoDS_Shape stage_cells_solid(const StageInput& in, double fit_err, Candidates& cand, DroppedFaces& dropped,
+                               Report& rep);
+
+/// One stage: candidate varieties, pruning (with `prune`; `pruned` receives how many of how
+/// many), the arrangement and its cells. With `direct_builds`, the shapes that have a direct
+/// construction are built so first. The stage's candidates go to `cand_out`.
+TopoDS_Shape solid_sweep(const StageInput& in, double& fit_err, Report& rep, Candidates* cand_out, bool prune,
+                         PruneCount* pruned, bool direct_builds);
+
+}  // namespace sweep::occt

@@ -1,0 +1,81 @@
+// The steps of run_sweep around the stages: the sweeps of points and curves, the membership that
+// judges the solid, the checks of the final solid and its verdict, the Monte Carlo volume of
+// --verify, and the share of the result's boundary that each variety carries.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <TopoDS_Shape.hxx>
+#include <string>
+
+#include "base/internal.hpp"
+#include "arrangement/stage_sweep.hpp"
+#include "sweep/membership.hpp"
+#include "sweep/settings.hpp"
+
+namespace sweep::occt {
+
+/// The trajectory of a point under one joint as an edge (the sweep of a point).
+TopoDS_Shape point_sweep(const TopoDS_Shape& body, const ScrewJoint& j, double T, double tol, double size);
+
+/// The surface swept by the edges of a curve (a compound of faces).
+TopoDS_Shape curve_sweep(const TopoDS_Shape& body, const ScrewJoint& j, double T, double tol, double fit_tol,
+                         double size, double* fit_err);
+
+/// A swept set of dimension 1 or 2 (no volume) and its report: the faces of a surface in one
+/// general fuse, so that overlapping sweeps count once, for the area too. Returns the result.
+TopoDS_Shape finish_curve_or_surface(const TopoDS_Shape& shape, int dim, double size, double fit_err, bool verify,
+                                     Report& rep);
+
+/// A membership test that never looks at the computed solid, for the verdict, and its name for
+/// the report; no test when none exists.
+struct IndependentMembership {
+  MemberTestMaker test;
+  std::string name;
+};
+/// The entity's orbit intervals for a primitive under one joint, the trajectory's intersections
+/// with the entity's own faces for other solids under one joint, the certified search over the
+/// joint box for primitives under chains and for points, curves and surfaces. `clipped`: the
+/// motion with no revolute joint beyond a whole turn; `raw`: the entity before the motion's home.
+IndependentMembership independent_membership(const EntitySpec& entity, const Motion& clipped, const TopoDS_Shape& raw,
+                                             const SignedDistance* sd, const ParametricEntity* pe, double size,
+                                             const Settings& settings);
+
+/// The checks of the final solid, which fill in the report: the reason it fails, or empty. Bands
+/// come from the requested tolerance and the model size, never from what the computation achieved.
+class FinalChecks {
+ public:
+  /// `fit_err`: the computation's fitting error (read at each check: a rebuild can change it);
+  /// `no_test`: why there is no verdict when `independent` is empty.
+  FinalChecks(Report& rep, IndependentMembership independent, const Eigen::AlignedBox3d& true_box, double tol,
+              double size, const double& fit_err, const Settings& settings, std::string no_test);
+  std::string operator()(const TopoDS_Shape& solid);
+  /// Whether the last failure is one that a face left out by pruning can cause (a missing or
+  /// wrong piece of boundary); a geometric error or an undecided verdict is not.
+  bool rebuild_may_help() const { return rebuild_may_help_; }
+  bool geometric_error() const { return geometric_error_; }
+  static const std::string invalid;
+
+ private:
+  std::string verdict(const TopoDS_Shape& solid);
+  Report& rep_;
+  IndependentMembership independent_;
+  Eigen::AlignedBox3d true_box_;
+  double tol_, size_;
+  const double& fit_err_;
+  const Settings& settings_;
+  std::string no_test_;
+  bool rebuild_may_help_ = false, geometric_error_ = false;
+};
+
+/// The Monte Carlo volume of --verify into the report, in the solid's box enlarged by 1 % of the
+/// model size, with a membership independent of the one that classified the cells.
+void monte_carlo_check(const EntitySpec& entity, const Motion& clipped, const TopoDS_Shape& raw,
+                       const TopoDS_Shape& result, const SignedDistance* sd, const ParametricEntity* pe, double size,
+                       const Settings& settings, Report& rep);
+
+/// Each variety's share of the result's boundary (area and divergence volume): a face of the
+/// result lies on the surface of the candidate it was cut from, or, merged from several, on the
+/// candidates its sample points lie on.
+void attribute_result_faces(Candidates& cands, const TopoDS_Shape& result, double size);
+
+}  // namespace sweep::occt

@@ -1,0 +1,291 @@
+// Point membership in a sweep by the paths of points: the trajectory test and its intersections.
+#include <BRepAdaptor_Surface.hxx>
+#include <BRepBndLib.hxx>
+#include <BRepClass3d_SolidClassifier.hxx>
+#include <BRepTopAdaptor_FClass2d.hxx>
+#include <Bnd_Box.hxx>
+#include <BndLib_Add3dCurve.hxx>
+#include <ElCLib.hxx>
+#include <ElSLib.hxx>
+#include <GeomAPI_PointsToBSpline.hxx>
+#include <GeomAdaptor_Curve.hxx>
+#include <Geom_BSplineCurve.hxx>
+#include <Geom_Circle.hxx>
+#include <Geom_Line.hxx>
+#include <Geom_TrimmedCurve.hxx>
+#include <IntCurvesFace_Intersector.hxx>
+#include <Precision.hxx>
+#include <TColgp_Array1OfPnt.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopoDS.hxx>
+#include <gp_Lin.hxx>
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <complex>
+
+#include "base/internal.hpp"
+
+namespace sweep::occt {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+/// The path of the body-frame point y(t) = exp(-xi t) x for t in [0, T] as a curve.
+Handle(Geom_Curve) trajectory(const ScrewJoint& j, const Eigen::Vector3d& x, double T, double tol) {
+  if (j.type == JointType::Prismatic) {
+    Handle(Geom_Line) l = new Geom_Line(to_pnt(x), gp_Dir(to_vec(-j.direction)));
+    return new Geom_TrimmedCurve(l, 0.0, T);
+  }
+  Eigen::Vector3d foot = j.point + j.direction * j.direction.dot(x - j.point);
+  double r = (x - foot).norm();
+  if (std::abs(j.pitch) == 0) {
+    if (r < 1e-12) return nullptr;
+    gp_Ax2 ax(to_pnt(foot), gp_Dir(to_vec(-j.direction)), gp_Dir(to_vec((x - foot) / r)));
+    Handle(Geom_Circle) c = new Geom_Circle(ax, r);
+    return new Geom_TrimmedCurve(c, 0.0, T);
+  }
+  const int n = std::max(16, int(std::ceil(T / (M_PI / 32))));
+  TColgp_Array1OfPnt pts(1, n + 1);
+  for (int k = 0; k <= n; ++k) pts.SetValue(k + 1, to_pnt(j.transform(-T * k / n) * x));
+  GeomAPI_PointsToBSpline fit(pts, 3, 8, GeomAbs_C2, tol);
+  Handle(Geom_Curve) c(fit.Curve().get());
+  return c;
+}
+
+}  // namespace
+
+std::vector<double> circle_torus_angles(const gp_Circ& c, const gp_Torus& tor, bool* solved) {
+  using C = std::complex<double>;
+  using Trig = std::array<C, 5>;  // coefficients of exp(i k w), k = -2..2
+  const gp_Ax3& ax = tor.Position();
+  const Eigen::Vector3d O = to_eigen(ax.Location()), Z = to_eigen(gp_Vec(ax.Direction()));
+  const Eigen::Vector3d Cc = to_eigen(c.Location()), Xc = to_eigen(gp_Vec(c.XAxis().Direction())),
+                        Yc = to_eigen(gp_Vec(c.YAxis().Direction()));
+  const double rho = c.Radius(), R = tor.MajorRadius(), r = tor.MinorRadius();
+  const Eigen::Vector3d d0 = Cc - O;
+  // g0 + g1 cos w + g2 sin w
+  auto trig = [](double g0, double g1, double g2) {
+    Trig t{};
+    t[2] = g0;
+    t[3] = C(g1, -g2) / 2.0;
+    t[1] = std::conj(t[3]);
+    return t;
+  };
+  auto mul = [](const Trig& a, const Trig& b) {  // both of degree 1 at most
+    Trig t{};
+    for (int i = 1; i <= 3; ++i)
+      for (int k = 1; k <= 3; ++k) t[i + k - 2] += a[i] * b[k];
+    return t;
+  };
+  // |d|^2 and d . z along the circle, d = P(w) - O
+  const Trig q = trig(d0.squaredNorm() + rho * rho, 2 * rho * d0.dot(Xc), 2 * rho * d0.dot(Yc));
+  const Trig a = trig(d0.dot(Z), rho * Xc.dot(Z), rho * Yc.dot(Z));
+  Trig sq = q;
+  sq[2] += R * R - r * r;
+  const Trig s2 = mul(sq, sq), a2 = mul(a, a);
+  Trig F{};
+  double scale = 0;
+  for (int k = 0; k < 5; ++k) {
+    F[k] = s2[k] - 4 * R * R * q[k] + 4 * R * R * a2[k];
+    scale = std::max(scale, std::abs(F[k]));
+  }
+  std::vector<double> angles;
+  *solved = std::abs(F[4]) > 1e-9 * scale;
+  if (!*solved) return angles;
+  // z^2 F = sum F[m] z^m: the roots of this quartic are its companion matrix's eigenvalues
+  Eigen::Matrix4cd comp = Eigen::Matrix4cd::Zero();
+  for (int m = 0; m < 4; ++m) comp(m, 3) = -F[m] / F[4];
+  for (int m = 1; m < 4; ++m) comp(m, m - 1) = 1.0;
+  const Eigen::ComplexEigenSolver<Eigen::Matrix4cd> es(comp, false);
+  if (es.info() != Eigen::Success) {
+    *solved = false;
+    return angles;
+  }
+  for (int k = 0; k < 4; ++k) {
+    const C z = es.eigenvalues()(k);
+    // a root off the unit circle by more than rounding (a double root is found to about the
+    // square root of the machine precision) is a point where the circle misses the torus
+    if (std::abs(std::abs(z) - 1.0) > 1e-6) continue;
+    double w = std::arg(z);
+    if (w < 0) w += 2 * M_PI;
+    angles.push_back(w);
+  }
+  std::sort(angles.begin(), angles.end());
+  return angles;
+}
+
+/// Membership by the trajectory: x is swept when y(0) is in the body, or y(t) meets its boundary.
+/// An intersector per face is set up once for all points: it meets the trajectories, and the
+/// rays that decide whether y(0) is in the body (OCCT's solid classifier decides where a ray
+/// cannot).
+struct TrajectoryMembership::Impl {
+  Impl(const TopoDS_Shape& body, bool solid, const ScrewJoint& j, double T, double tol)
+      : solid_(solid), j_(j), T_(T), tol_(tol) {
+    if (solid_) cls_.Load(body);
+    // One intersector per face, the analytic ones (intersected in closed form) first.
+    std::vector<std::pair<int, TopoDS_Face>> faces;
+    for (TopExp_Explorer ex(body, TopAbs_FACE); ex.More(); ex.Next()) {
+      const TopoDS_Face& f = TopoDS::Face(ex.Current());
+      const GeomAbs_SurfaceType type = BRepAdaptor_Surface(f, false).GetType();
+      const bool analytic = type == GeomAbs_Plane || type == GeomAbs_Cylinder || type == GeomAbs_Cone ||
+                            type == GeomAbs_Sphere;
+      faces.push_back({analytic ? 0 : 1, f});
+    }
+    std::stable_sort(faces.begin(), faces.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (const auto& f : faces) {
+      FaceHit h;
+      BRepBndLib::Add(f.second, h.box);
+      h.box.SetGap(tol);
+      // points met are classified on the face itself, not within its edges' tolerances (which
+      // would take points off the face for points on it)
+      h.inter = std::make_unique<IntCurvesFace_Intersector>(f.second, tol, true, false);
+      const BRepAdaptor_Surface S(f.second);
+      if (S.GetType() == GeomAbs_Torus) {
+        h.torus = std::make_unique<gp_Torus>(S.Torus());
+        h.fc = std::make_unique<BRepTopAdaptor_FClass2d>(f.second, tol);
+      }
+      inter_.push_back(std::move(h));
+    }
+  }
+  /// Whether x is swept: the trajectory meets the body's boundary, or lies wholly inside it (then
+  /// so does y(0)). Either test can come first; the order that has been cheaper so far does (the
+  /// answer does not depend on it).
+  bool operator()(const Eigen::Vector3d& x) {
+    if (!solid_) return meets_boundary(x);
+    const double classify_first = classify_.cost() + (1 - classify_.success()) * intersect_.cost();
+    const double intersect_first = intersect_.cost() + (1 - intersect_.success()) * classify_.cost();
+    if (classify_first < intersect_first) return inside_at_start(x) || meets_boundary(x);
+    return meets_boundary(x) || inside_at_start(x);
+  }
+
+  /// Running cost and success rate of one test.
+  struct Stats {
+    double seconds = 0, runs = 0, successes = 0;
+    double cost() const { return (seconds + 1e-3) / (runs + 1); }
+    double success() const { return (successes + 1) / (runs + 2); }
+    bool record(Clock::time_point t0, bool ok) {
+      seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+      runs += 1;
+      successes += ok;
+      return ok;
+    }
+  };
+
+  /// Whether x is inside the body by a ray: the crossings of a half-line from x with the faces,
+  /// counted, and the first one's transition (leaving means x is inside). -1 when a direction
+  /// gives no clear answer (x on the boundary, a tangent crossing, count and transition at odds)
+  /// after a few tries.
+  int ray_inside(const Eigen::Vector3d& x) {
+    static const double dirs[3][3] = {{0.5773, 0.4719, 0.6663}, {-0.3981, 0.8377, -0.3738}, {0.7122, -0.2093, -0.6700}};
+    for (const auto& d : dirs) {
+      const gp_Lin line(to_pnt(x), gp_Dir(d[0], d[1], d[2]));
+      int crossings = 0;
+      double first = Precision::Infinite();
+      bool first_leaves = false, clear = true;
+      for (auto& h : inter_) {
+        if (h.box.IsOut(line)) continue;
+        h.inter->Perform(line, -tol_, Precision::Infinite());
+        if (!h.inter->IsDone()) continue;  // a face without extent in one direction
+        for (int k = 1; k <= h.inter->NbPnt(); ++k) {
+          const double w = h.inter->WParameter(k);
+          const IntCurveSurface_TransitionOnCurve tr = h.inter->Transition(k);
+          if (w < tol_ || tr == IntCurveSurface_Tangent || h.inter->State(k) != TopAbs_IN) {
+            clear = false;
+            break;
+          }
+          ++crossings;
+          if (w < first) {
+            first = w;
+            first_leaves = tr == IntCurveSurface_Out;
+          }
+        }
+        if (!clear) break;
+      }
+      if (!clear) continue;
+      if (crossings == 0) return 0;
+      const bool by_count = crossings % 2 == 1;
+      if (by_count == first_leaves) return by_count ? 1 : 0;
+    }
+    return -1;
+  }
+
+  bool inside_at_start(const Eigen::Vector3d& x) {
+    const auto t0 = Clock::now();
+    const int by_ray = ray_inside(x);
+    if (by_ray >= 0) return classify_.record(t0, by_ray == 1);
+    cls_.Perform(to_pnt(x), tol_);
+    return classify_.record(t0, cls_.State() == TopAbs_IN);
+  }
+
+  /// Whether the trajectory circle c, over [0, T], meets the torus face classified by fc (see
+  /// circle_torus_angles for *solved).
+  bool circle_meets_face(const gp_Circ& c, const gp_Torus& tor, BRepTopAdaptor_FClass2d& fc, bool* solved) const {
+    for (double w : circle_torus_angles(c, tor, solved)) {
+      if (w > T_ + 1e-12 && w < 2 * M_PI - 1e-12) continue;
+      if (w > T_) w = 0.0;
+      double u, v;
+      ElSLib::Parameters(tor, ElCLib::Value(w, c), u, v);
+      const TopAbs_State st = fc.Perform(gp_Pnt2d(u, v));
+      if (st == TopAbs_IN || st == TopAbs_ON) return true;
+    }
+    return false;
+  }
+
+  bool meets_boundary(const Eigen::Vector3d& x) {
+    const auto t0 = Clock::now();
+    Handle(Geom_Curve) c = trajectory(j_, x, T_, tol_);
+    if (c.IsNull()) return intersect_.record(t0, false);
+    Handle(GeomAdaptor_Curve) curve = new GeomAdaptor_Curve(c);
+    Bnd_Box box;
+    BndLib_Add3dCurve::Add(*curve, 0.0, box);
+    Handle(Geom_Circle) circle;
+    if (auto tc = Handle(Geom_TrimmedCurve)::DownCast(c)) circle = Handle(Geom_Circle)::DownCast(tc->BasisCurve());
+    for (std::size_t k = 0; k < inter_.size(); ++k) {
+      if (inter_[k].box.IsOut(box)) continue;
+      if (circle && inter_[k].torus) {
+        bool solved = false;
+        const bool hit = circle_meets_face(circle->Circ(), *inter_[k].torus, *inter_[k].fc, &solved);
+        if (solved) {
+          if (!hit) continue;
+          if (k > 0) std::rotate(inter_.begin(), inter_.begin() + k, inter_.begin() + k + 1);
+          return intersect_.record(t0, true);
+        }
+      }
+      inter_[k].inter->Perform(curve, c->FirstParameter(), c->LastParameter());
+      if (!inter_[k].inter->IsDone() || inter_[k].inter->NbPnt() == 0) continue;
+      // the face met goes first next time: neighbouring points tend to meet the same face
+      if (k > 0) std::rotate(inter_.begin(), inter_.begin() + k, inter_.begin() + k + 1);
+      return intersect_.record(t0, true);
+    }
+    return intersect_.record(t0, false);
+  }
+
+  bool solid_;
+  ScrewJoint j_;
+  double T_, tol_;
+  BRepClass3d_SolidClassifier cls_;
+  /// A face's box and its intersector, which samples the face once for every curve it meets.
+  struct FaceHit {
+    Bnd_Box box;
+    std::unique_ptr<IntCurvesFace_Intersector> inter;
+    // a torus face met by circles is intersected in closed form
+    std::unique_ptr<gp_Torus> torus;
+    std::unique_ptr<BRepTopAdaptor_FClass2d> fc;
+  };
+  std::vector<FaceHit> inter_;
+  Stats classify_, intersect_;
+};
+
+TrajectoryMembership::TrajectoryMembership(const TopoDS_Shape& body, bool solid, const ScrewJoint& j, double T,
+                                           double tol)
+    : impl_(std::make_unique<Impl>(body, solid, j, T, tol)) {}
+TrajectoryMembership::~TrajectoryMembership() = default;
+bool TrajectoryMembership::operator()(const Eigen::Vector3d& x) { return (*impl_)(x); }
+int TrajectoryMembership::ray_inside(const Eigen::Vector3d& x) { return impl_->ray_inside(x); }
+
+}  // namespace sweep::occt

@@ -1,0 +1,441 @@
+// The verdict on a computed solid against a membership test that does not use it.
+#include "verdict/verdict.hpp"
+
+#include <BRepAdaptor_Curve.hxx>
+#include <BRepAdaptor_Surface.hxx>
+#include <BRepClass3d_SolidClassifier.hxx>
+#include <BRepLProp_SLProps.hxx>
+#include <BRepMesh_IncrementalMesh.hxx>
+#include <BRep_Tool.hxx>
+#include <BRepTools.hxx>
+#include <Geom2d_Curve.hxx>
+#include <Geom_Surface.hxx>
+#include <ShapeAnalysis_Edge.hxx>
+#include <ShapeUpgrade_ShapeDivideClosed.hxx>
+#include <Standard_ErrorHandler.hxx>
+#include <Standard_Failure.hxx>
+#include <GCPnts_QuasiUniformDeflection.hxx>
+#include <Poly_Triangulation.hxx>
+#include <TopExp.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
+#include <TopoDS.hxx>
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <map>
+#include <cmath>
+#include <mutex>
+#include <random>
+#include <sstream>
+
+namespace sweep::occt {
+
+namespace {
+
+/// One face's triangles with their parameters, for probes on the exact surface.
+struct FaceMesh {
+  TopoDS_Face face;
+  std::vector<Triangle> xyz;
+  std::vector<std::array<gp_Pnt2d, 3>> uv;
+  std::vector<double> cumulative;  ///< cumulative triangle areas
+  double area = 0;
+};
+
+std::vector<FaceMesh> face_meshes(const TopoDS_Shape& shape) {
+  std::vector<FaceMesh> out;
+  for (TopExp_Explorer ex(shape, TopAbs_FACE); ex.More(); ex.Next()) {
+    FaceMesh fm;
+    fm.face = TopoDS::Face(ex.Current());
+    TopLoc_Location loc;
+    const Handle(Poly_Triangulation) tri = BRep_Tool::Triangulation(fm.face, loc);
+    if (tri.IsNull()) continue;
+    const gp_Trsf T = loc.Transformation();
+    const bool reversed = fm.face.Orientation() == TopAbs_REVERSED;
+    for (int k = 1; k <= tri->NbTriangles(); ++k) {
+      int n1, n2, n3;
+      tri->Triangle(k).Get(n1, n2, n3);
+      if (reversed) std::swap(n2, n3);
+      Triangle t{to_eigen(tri->Node(n1).Transformed(T)), to_eigen(tri->Node(n2).Transformed(T)),
+                 to_eigen(tri->Node(n3).Transformed(T))};
+      fm.area += 0.5 * (t.b - t.a).cross(t.c - t.a).norm();
+      fm.cumulative.push_back(fm.area);
+      fm.xyz.push_back(t);
+      if (tri->HasUVNodes()) fm.uv.push_back({tri->UVNode(n1), tri->UVNode(n2), tri->UVNode(n3)});
+    }
+    out.push_back(std::move(fm));
+  }
+  return out;
+}
+
+/// Polylines of the shape's edges, for the distance of a probe to the nearest edge.
+struct EdgeSegments {
+  std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> segments;
+  std::vector<Eigen::AlignedBox3d> edge_boxes;
+  std::vector<std::pair<std::size_t, std::size_t>> ranges;  ///< each edge's segments
+
+  EdgeSegments(const TopoDS_Shape& shape, double deflection) {
+    TopTools_IndexedMapOfShape edges;
+    TopExp::MapShapes(shape, TopAbs_EDGE, edges);
+    for (int k = 1; k <= edges.Extent(); ++k) {
+      const TopoDS_Edge& e = TopoDS::Edge(edges(k));
+      if (BRep_Tool::Degenerated(e)) continue;
+      BRepAdaptor_Curve c(e);
+      GCPnts_QuasiUniformDeflection pts(c, deflection);
+      std::vector<Eigen::Vector3d> p;
+      if (pts.IsDone() && pts.NbPoints() >= 2) {
+        for (int i = 1; i <= pts.NbPoints(); ++i) p.push_back(to_eigen(pts.Value(i)));
+      } else {
+        for (int i = 0; i <= 16; ++i)
+          p.push_back(to_eigen(c.Value(c.FirstParameter() + (c.LastParameter() - c.FirstParameter()) * i / 16)));
+      }
+      const std::size_t first = segments.size();
+      Eigen::AlignedBox3d box;
+      for (std::size_t i = 0; i + 1 < p.size(); ++i) {
+        segments.push_back({p[i], p[i + 1]});
+        box.extend(p[i]);
+        box.extend(p[i + 1]);
+      }
+      ranges.push_back({first, segments.size()});
+      edge_boxes.push_back(box);
+    }
+  }
+  /// Whether some edge passes within r of x.
+  bool near(const Eigen::Vector3d& x, double r) const {
+    for (std::size_t e = 0; e < ranges.size(); ++e) {
+      const Eigen::Vector3d d = (edge_boxes[e].min() - x).cwiseMax(x - edge_boxes[e].max()).cwiseMax(0.0);
+      if (d.norm() > r) continue;
+      for (std::size_t s = ranges[e].first; s < ranges[e].second; ++s) {
+        const Eigen::Vector3d a = segments[s].first, ab = segments[s].second - a;
+        const double t = std::clamp((x - a).dot(ab) / std::max(ab.squaredNorm(), 1e-300), 0.0, 1.0);
+        if ((a + t * ab - x).norm() <= r) return true;
+      }
+    }
+    return false;
+  }
+};
+
+std::string point_text(const Eigen::Vector3d& p) {
+  std::ostringstream os;
+  os.precision(9);
+  os << "(" << p.x() << ", " << p.y() << ", " << p.z() << ")";
+  return os.str();
+}
+
+}  // namespace
+
+std::vector<Triangle> triangulate(const TopoDS_Shape& shape, double deflection, std::string* problem) {
+  BRepMesh_IncrementalMesh mesh(shape, deflection, false, 0.5, true);
+  std::vector<Triangle> out;
+  const std::vector<FaceMesh> faces = face_meshes(shape);
+  if (problem) {
+    // a face without triangles is a hole in the mesh, unless it has no area
+    problem->clear();
+    double total = 0;
+    for (const auto& fm : faces) total += fm.area;
+    int missing = 0;
+    for (TopExp_Explorer ex(shape, TopAbs_FACE); ex.More(); ex.Next()) {
+      const TopoDS_Face& f = TopoDS::Face(ex.Current());
+      TopLoc_Location loc;
+      missing += BRep_Tool::Triangulation(f, loc).IsNull() && std::abs(face_area(f)) > 1e-9 * total;
+    }
+    if (missing > 0) *problem = std::to_string(missing) + " faces have no triangulation";
+  }
+  Bnd_Box b;
+  for (const auto& fm : faces) {
+    out.insert(out.end(), fm.xyz.begin(), fm.xyz.end());
+    if (!problem || !problem->empty()) continue;
+    // the triangles must cover the face: their area against the face's, within what the chords of
+    // a deflection-bounded triangulation can lose
+    const double exact = face_area(fm.face);
+    if (std::abs(fm.area - exact) > 0.05 * std::abs(exact) + 1e-9)
+      *problem = "the triangulation of a face covers " + std::to_string(fm.area) + " of its area " + std::to_string(exact);
+  }
+  if (problem && problem->empty()) {
+    // closed: every triangle side is shared by another triangle
+    Eigen::AlignedBox3d box;
+    for (const auto& t : out) box.extend(t.a), box.extend(t.b), box.extend(t.c);
+    const double q = 1e-9 * std::max(box.sizes().maxCoeff(), 1e-300);
+    auto key = [&](const Eigen::Vector3d& p) {
+      return std::array<long long, 3>{std::llround(p.x() / q), std::llround(p.y() / q), std::llround(p.z() / q)};
+    };
+    std::map<std::pair<std::array<long long, 3>, std::array<long long, 3>>, int> sides;
+    for (const auto& t : out) {
+      const Eigen::Vector3d v[3] = {t.a, t.b, t.c};
+      for (int k = 0; k < 3; ++k) {
+        auto a = key(v[k]), c = key(v[(k + 1) % 3]);
+        if (c < a) std::swap(a, c);
+        if (a != c) sides[{a, c}] += 1;
+      }
+    }
+    std::size_t open = 0;
+    for (const auto& [side, count] : sides) open += count % 2;
+    if (open > 0) *problem = "the triangulation has " + std::to_string(open) + " open sides";
+  }
+  return out;
+}
+
+double proportion_upper_bound(std::size_t k, std::size_t n, double confidence) {
+  if (n == 0) return 1.0;
+  // one-sided normal quantile by bisection on the error function
+  double lo = 0, hi = 10;
+  for (int it = 0; it < 100; ++it) {
+    const double m = 0.5 * (lo + hi);
+    (0.5 * std::erfc(-m / std::sqrt(2.0)) < confidence ? lo : hi) = m;
+  }
+  const double z = 0.5 * (lo + hi), N = double(n), p = double(k) / N;
+  const double centre = p + z * z / (2 * N), spread = z * std::sqrt(p * (1 - p) / N + z * z / (4 * N * N));
+  return std::min(1.0, (centre + spread) / (1 + z * z / N));
+}
+
+namespace {
+
+/// Serialises the first disagreement's description across threads.
+class FirstMismatch {
+ public:
+  explicit FirstMismatch(std::string& out) : out_(out) {}
+  void note(const std::string& what) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (out_.empty()) out_ = what;
+  }
+
+ private:
+  std::string& out_;
+  std::mutex mutex_;
+};
+
+/// Uniform samples in the box, each classified against the triangulated solid (or, when `mesh` is
+/// null, by OCCT's classifier) and by the membership; samples within `band` of the triangulated
+/// boundary are left out.
+void judge_samples(const TopoDS_Shape& solid, const MeshIndex* mesh, const Eigen::AlignedBox3d& box,
+                   const MemberTestMaker& member, double tol, double band, const Settings& settings,
+                   FirstMismatch& first, VerdictResult& r) {
+  const std::size_t n = settings.verdict_samples;
+  std::vector<Eigen::Vector3d> pts(n);
+  std::mt19937_64 rng(settings.seed);
+  std::uniform_real_distribution<double> uni(0.0, 1.0);
+  for (auto& p : pts) p = box.min() + Eigen::Vector3d(uni(rng), uni(rng), uni(rng)).cwiseProduct(box.sizes());
+  std::atomic<std::size_t> near{0}, mismatches{0}, undecided{0};
+  parallel_for(n, [&]() -> std::function<void(std::size_t)> {
+    const MemberTest in_set = member();
+    auto cls = std::make_shared<BRepClass3d_SolidClassifier>();
+    if (!mesh) cls->Load(solid);
+    return [&, in_set, cls](std::size_t i) {
+      const Eigen::Vector3d& p = pts[i];
+      bool a = false;
+      if (mesh) {
+        if (mesh->distance_below(p, band) < band) {
+          ++near;
+          return;
+        }
+        a = mesh->inside(p);
+      } else {
+        cls->Perform(to_pnt(p), tol);
+        if (cls->State() == TopAbs_ON) {
+          ++near;
+          return;
+        }
+        a = cls->State() == TopAbs_IN;
+      }
+      const int m = in_set(p);
+      if (m < 0) {
+        ++undecided;
+        return;
+      }
+      const bool b = m == 1;
+      if (a != b) {
+        ++mismatches;
+        first.note(std::string("the point ") + point_text(p) +
+                   (b ? " of the swept set lies outside the solid" : " lies in the solid but not in the swept set"));
+      }
+    };
+  });
+  r.samples = n;
+  r.near_boundary = near;
+  r.mismatches = mismatches;
+  r.undecided = undecided;
+}
+
+struct Probe {
+  Eigen::Vector3d p, n;  ///< a point of a face and the outward normal there
+};
+
+/// Points on the exact faces, chosen by area, at least `clearance` from every edge.
+std::vector<Probe> pick_probes(const TopoDS_Shape& solid, const std::vector<FaceMesh>& faces, double deflection,
+                               double clearance, const Settings& settings) {
+  std::vector<Probe> probes;
+  double total_area = 0;
+  for (const auto& f : faces) total_area += f.area;
+  if (total_area <= 0) return probes;
+  const EdgeSegments edges(solid, deflection);
+  std::mt19937_64 rng(settings.seed + 1);
+  std::uniform_real_distribution<double> uni(0.0, 1.0);
+  const std::size_t wanted = settings.verdict_probes;
+  for (std::size_t attempt = 0; attempt < 8 * wanted && probes.size() < wanted; ++attempt) {
+    // a face by area, a triangle of it by area, a point of it, carried to the exact surface
+    double pick = uni(rng) * total_area;
+    std::size_t fi = 0;
+    while (fi + 1 < faces.size() && pick > faces[fi].area) pick -= faces[fi++].area;
+    const FaceMesh& fm = faces[fi];
+    if (fm.uv.empty() || fm.cumulative.empty()) continue;
+    const std::size_t ti = std::min<std::size_t>(
+        std::lower_bound(fm.cumulative.begin(), fm.cumulative.end(), uni(rng) * fm.area) - fm.cumulative.begin(),
+        fm.uv.size() - 1);
+    double s = uni(rng), t = uni(rng);
+    if (s + t > 1) s = 1 - s, t = 1 - t;
+    const auto& uv = fm.uv[ti];
+    const gp_Pnt2d q(uv[0].X() + s * (uv[1].X() - uv[0].X()) + t * (uv[2].X() - uv[0].X()),
+                     uv[0].Y() + s * (uv[1].Y() - uv[0].Y()) + t * (uv[2].Y() - uv[0].Y()));
+    BRepAdaptor_Surface S(fm.face);
+    BRepLProp_SLProps props(S, q.X(), q.Y(), 1, 1e-9);
+    if (!props.IsNormalDefined()) continue;
+    Eigen::Vector3d nn = to_eigen(gp_Vec(props.Normal()));
+    if (fm.face.Orientation() == TopAbs_REVERSED) nn = -nn;
+    const Eigen::Vector3d p = to_eigen(props.Value());
+    if (edges.near(p, clearance)) continue;
+    probes.push_back({p, nn});
+  }
+  return probes;
+}
+
+/// Each probe tested by the membership at `delta` outside and inside its face (where the
+/// membership cannot decide that close, farther off, up to `deflection`). In batches: when the
+/// membership leaves almost every probe of the first batch undecided (a search over joint
+/// parameters this close to the boundary), the rest are not tried.
+void judge_probes(const std::vector<Probe>& probes, const MemberTestMaker& member, double delta, double deflection,
+                  FirstMismatch& first, VerdictResult& r) {
+  std::atomic<std::size_t> bad{0}, undecided{0};
+  std::mutex offset_mutex;
+  r.probe_offset_max = delta;
+  const std::size_t batch = 64;
+  std::size_t tried = 0;
+  while (tried < probes.size()) {
+    const std::size_t start = tried, count = std::min(batch, probes.size() - start);
+    const std::size_t undecided_before = undecided;
+    parallel_for(count, [&]() -> std::function<void(std::size_t)> {
+      const MemberTest in_set = member();
+      return [&, in_set, start](std::size_t k) {
+        const Probe& pr = probes[start + k];
+        int mo = -1, mi = -1;
+        double off = delta;
+        for (; off <= std::max(delta, deflection) * (1 + 1e-12); off *= 4) {
+          mo = in_set(pr.p + off * pr.n);
+          mi = mo < 0 ? -1 : in_set(pr.p - off * pr.n);
+          if (mo >= 0 && mi >= 0) break;
+        }
+        if (mo < 0 || mi < 0) {
+          ++undecided;
+          return;
+        }
+        if (off > delta) {
+          std::lock_guard<std::mutex> lock(offset_mutex);
+          r.probe_offset_max = std::max(r.probe_offset_max, off);
+        }
+        const bool out_in_set = mo == 1, in_in_set = mi == 1;
+        if (out_in_set || !in_in_set) {
+          ++bad;
+          first.note(std::string("the boundary of the solid at ") + point_text(pr.p) + " is not that of the swept set (" +
+                     (out_in_set ? "a point just outside it is swept" : "a point just inside it is not swept") + ")");
+        }
+      };
+    });
+    tried += count;
+    if (start == 0 && undecided - undecided_before >= count * 9 / 10) break;
+  }
+  r.probes = tried;
+  r.probe_mismatches = bad;
+  r.probe_undecided = undecided;
+}
+
+}  // namespace
+
+VerdictResult judge_solid(const TopoDS_Shape& solid, const Eigen::AlignedBox3d& box, const MemberTestMaker& member,
+                          double tol, double size, const Settings& settings) {
+  VerdictResult r;
+  r.undecided_fraction = settings.undecided_fraction;
+  const double deflection = settings.verdict_deflection * size;
+  // OCCT's mesher can leave a face closed on itself (a tube with a seam) without interior nodes
+  // across its closed direction, so that whole strips collapse onto the seam; a copy with such
+  // faces cut in two (the same geometry; the result itself is not changed) meshes right.
+  // The solid is meshed as it is, then (when that mesh fails its checks) as such a copy, then both
+  // finer; when every mesh fails (or OCCT throws), samples are classified by OCCT's classifier.
+  // (Meshing the copy first costs the overlapping springs a third more: cutting their trimmed
+  // faces can throw.)
+  TopoDS_Shape meshed;
+  std::string problem, first_problem;
+  std::vector<Triangle> tris;
+  for (int attempt = 0; attempt < 4 && (attempt == 0 || !problem.empty()); ++attempt) {
+    const bool divide = attempt % 2 == 1;
+    r.classifier = std::string(attempt < 2 ? "the triangulation" : "a finer triangulation") +
+                   (divide ? " (closed faces divided)" : "");
+    if (!meshed.IsNull()) BRepTools::Clean(meshed);
+    meshed = solid;
+    try {
+      OCC_CATCH_SIGNALS
+      if (divide) {
+        ShapeUpgrade_ShapeDivideClosed divider(solid);
+        divider.SetNbSplitPoints(1);
+        divider.Perform();
+        if (!divider.Result().IsNull()) meshed = divider.Result();
+      }
+      tris = triangulate(meshed, (attempt < 2 ? 1.0 : 0.25) * deflection, &problem);
+    } catch (const Standard_Failure& f) {
+      problem = std::string("OCCT failed to mesh it: ") + (f.GetMessageString() ? f.GetMessageString() : "");
+      meshed = solid;
+      tris.clear();
+    }
+    if (attempt == 0) first_problem = problem;
+  }
+  if (!problem.empty()) r.classifier = "OCCT's solid classifier (" + first_problem + "; " + problem + ")";
+  const bool by_mesh = problem.empty();
+  const MeshIndex mesh(by_mesh ? std::move(tris) : std::vector<Triangle>());
+  const std::vector<FaceMesh> faces = face_meshes(meshed);
+  r.box_volume = box.volume();
+  FirstMismatch first(r.first_mismatch);
+  judge_samples(solid, by_mesh ? &mesh : nullptr, box, member, tol, tol + 3 * deflection, settings, first, r);
+  const double delta = settings.probe_offset * tol;
+  judge_probes(pick_probes(meshed, faces, deflection, 10 * delta + deflection, settings), member, delta, deflection,
+               first, r);
+  // The symmetric difference: where samples disagree, the band that was not tested and the
+  // samples the membership did not decide.
+  r.difference_bound =
+      r.box_volume * proportion_upper_bound(r.mismatches + r.near_boundary + r.undecided, r.samples, settings.confidence);
+  // the triangulation was the verdict's: the result goes out without it (the divided copy shares
+  // the faces that were not cut)
+  BRepTools::Clean(meshed);
+  BRepTools::Clean(solid);
+  return r;
+}
+
+double measured_geometric_error(const TopoDS_Shape& shape) {
+  double worst = 0;
+  ShapeAnalysis_Edge sae;
+  for (TopExp_Explorer fx(shape, TopAbs_FACE); fx.More(); fx.Next()) {
+    const TopoDS_Face& face = TopoDS::Face(fx.Current());
+    TopLoc_Location sl;
+    const Handle(Geom_Surface) surface = BRep_Tool::Surface(face, sl);
+    for (TopExp_Explorer ex(face, TopAbs_EDGE); ex.More(); ex.Next()) {
+      const TopoDS_Edge& e = TopoDS::Edge(ex.Current());
+      if (BRep_Tool::Degenerated(e)) continue;
+      double dev = 0;
+      if (sae.CheckSameParameter(e, face, dev, 23)) worst = std::max(worst, dev);
+      double f, l;
+      const Handle(Geom2d_Curve) pc = BRep_Tool::CurveOnSurface(e, face, f, l);
+      const BRepAdaptor_Curve curve(e);
+      for (TopExp_Explorer vx(e, TopAbs_VERTEX); vx.More(); vx.Next()) {
+        const TopoDS_Vertex& v = TopoDS::Vertex(vx.Current());
+        const gp_Pnt p = BRep_Tool::Pnt(v);
+        const double t = BRep_Tool::Parameter(v, e);
+        worst = std::max(worst, curve.Value(t).Distance(p));
+        if (!pc.IsNull() && !surface.IsNull()) {
+          const gp_Pnt2d uv = pc->Value(BRep_Tool::Parameter(v, e, face));
+          worst = std::max(worst, surface->Value(uv.X(), uv.Y()).Transformed(sl.Transformation()).Distance(p));
+        }
+      }
+    }
+  }
+  return worst;
+}
+
+}  // namespace sweep::occt
