@@ -1,0 +1,245 @@
+#include "sweep/stage_motion.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include "sweep/error.hpp"
+
+namespace sweep {
+
+namespace {
+
+Eigen::Matrix3d hat(const Eigen::Vector3d& w) {
+  Eigen::Matrix3d K;
+  K << 0, -w.z(), w.y(), w.z(), 0, -w.x(), -w.y(), w.x(), 0;
+  return K;
+}
+
+/// A value with its first and second derivatives in t (forward-mode, second order).
+struct Jet {
+  double v = 0, d = 0, dd = 0;
+};
+Jet operator+(Jet a, Jet b) { return {a.v + b.v, a.d + b.d, a.dd + b.dd}; }
+Jet operator-(Jet a, Jet b) { return {a.v - b.v, a.d - b.d, a.dd - b.dd}; }
+Jet operator*(Jet a, Jet b) { return {a.v * b.v, a.d * b.v + a.v * b.d, a.dd * b.v + 2 * a.d * b.d + a.v * b.dd}; }
+Jet inverse(Jet a) {
+  const double i = 1 / a.v;
+  return {i, -a.d * i * i, (2 * a.d * a.d * i - a.dd) * i * i};
+}
+Jet jet_sin(Jet a) { return {std::sin(a.v), std::cos(a.v) * a.d, std::cos(a.v) * a.dd - std::sin(a.v) * a.d * a.d}; }
+Jet jet_cos(Jet a) { return {std::cos(a.v), -std::sin(a.v) * a.d, -std::sin(a.v) * a.dd - std::cos(a.v) * a.d * a.d}; }
+Jet jet_sqrt(Jet a) {
+  const double s = std::sqrt(a.v);
+  return {s, a.d / (2 * s), (2 * a.v * a.dd - a.d * a.d) / (4 * a.v * s)};
+}
+
+/// An expression in the one variable t as a jet.
+Jet jet_of(const Expr& e, double t) {
+  double g = 0, h = 0;
+  const double v = e.eval_d2(&t, &g, &h);
+  return {v, g, h};
+}
+
+using JetMatrix = Jet[3][3];
+
+/// R = I + sin(angle) K + (1 - cos(angle)) K^2, K the cross-product matrix of the unit axis.
+void rotation_jet(const Jet axis[3], Jet angle, JetMatrix R) {
+  const Jet inv_norm = inverse(jet_sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]));
+  const Jet u[3] = {axis[0] * inv_norm, axis[1] * inv_norm, axis[2] * inv_norm};
+  const Jet zero{};
+  const Jet K[3][3] = {{zero, zero - u[2], u[1]}, {u[2], zero, zero - u[0]}, {zero - u[1], u[0], zero}};
+  const Jet s = jet_sin(angle), c1 = Jet{1, 0, 0} - jet_cos(angle);
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      Jet k2{};
+      for (int m = 0; m < 3; ++m) k2 = k2 + K[i][m] * K[m][j];
+      R[i][j] = Jet{i == j ? 1.0 : 0.0, 0, 0} + s * K[i][j] + c1 * k2;
+    }
+}
+
+/// The perpendicular distance of x from the axis through c along unit w.
+double distance_to_axis(const Eigen::Vector3d& x, const Eigen::Vector3d& c, const Eigen::Vector3d& w) {
+  const Eigen::Vector3d r = x - c;
+  return (r - w * w.dot(r)).norm();
+}
+
+}  // namespace
+
+Eigen::Isometry3d StageMotion::transform(double t) const {
+  const PoseJet P = pose(t);
+  Eigen::Isometry3d M = Eigen::Isometry3d::Identity();
+  M.linear() = P.R;
+  M.translation() = P.p;
+  return M;
+}
+
+Twist StageMotion::twist(double t) const {
+  const PoseJet P = pose(t);
+  const Eigen::Matrix3d W = P.dR * P.R.transpose();
+  Twist tw;
+  tw.omega = Eigen::Vector3d(0.5 * (W(2, 1) - W(1, 2)), 0.5 * (W(0, 2) - W(2, 0)), 0.5 * (W(1, 0) - W(0, 1)));
+  tw.v = P.dp - tw.omega.cross(P.p);
+  return tw;
+}
+
+Eigen::Vector3d StageMotion::body_point(double t, const Eigen::Vector3d& x) const {
+  const PoseJet P = pose(t);
+  return P.R.transpose() * (x - P.p);
+}
+
+ScrewStage::ScrewStage(const ScrewJoint& joint, const Eigen::Isometry3d& home) : joint_(joint), home_(home) {}
+
+PoseJet ScrewStage::pose(double t) const {
+  const Eigen::Isometry3d M = joint_.transform(t) * home_;
+  PoseJet P;
+  P.R = M.linear();
+  P.p = M.translation();
+  if (joint_.type == JointType::Prismatic) {
+    P.dp = joint_.direction;
+    return P;
+  }
+  const Eigen::Matrix3d W = hat(joint_.direction);
+  P.dR = W * P.R;
+  P.ddR = W * P.dR;
+  P.dp = joint_.velocity(P.p);
+  P.ddp = joint_.direction.cross(P.dp);
+  return P;
+}
+
+double ScrewStage::speed_bound(double radius) const {
+  if (joint_.type == JointType::Prismatic) return 1.0;
+  // the rotation keeps the distance of the home origin from the axis
+  return radius + distance_to_axis(home_.translation(), joint_.point, joint_.direction) + std::abs(joint_.pitch);
+}
+
+PathMotion::PathMotion(double lo, double hi, const Expr translate[3], std::vector<PathRotation> rotations,
+                       const std::string& field)
+    : lo_(lo), hi_(hi), rotations_(std::move(rotations)) {
+  if (!(lo < hi)) throw InputError(field + "/t", "the range is empty (lo must be below hi)");
+  for (int i = 0; i < 3; ++i) translate_[i] = translate[i];
+  for (std::size_t k = 0; k < rotations_.size(); ++k)
+    for (int s = 0; s <= 256; ++s) {
+      double t = lo + (hi - lo) * s / 256.0;
+      Eigen::Vector3d a;
+      for (int i = 0; i < 3; ++i) a[i] = rotations_[k].axis[i].eval(&t);
+      if (!(a.norm() > 1e-12))
+        throw InputError(field + "/rotate/" + std::to_string(k) + "/axis",
+                         "the rotation axis vanishes at t = " + std::to_string(t));
+    }
+}
+
+PoseJet PathMotion::pose(double t) const {
+  // R(t) = R_1(t) R_2(t) ... as jets
+  Jet R[3][3];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) R[i][j] = Jet{i == j ? 1.0 : 0.0, 0, 0};
+  for (const auto& rot : rotations_) {
+    const Jet axis[3] = {jet_of(rot.axis[0], t), jet_of(rot.axis[1], t), jet_of(rot.axis[2], t)};
+    Jet Rk[3][3];
+    rotation_jet(axis, jet_of(rot.angle, t), Rk);
+    Jet out[3][3];
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) {
+        Jet s{};
+        for (int m = 0; m < 3; ++m) s = s + R[i][m] * Rk[m][j];
+        out[i][j] = s;
+      }
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) R[i][j] = out[i][j];
+  }
+  PoseJet P;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      P.R(i, j) = R[i][j].v;
+      P.dR(i, j) = R[i][j].d;
+      P.ddR(i, j) = R[i][j].dd;
+    }
+    const Jet p = jet_of(translate_[i], t);
+    P.p[i] = p.v;
+    P.dp[i] = p.d;
+    P.ddp[i] = p.dd;
+  }
+  return P;
+}
+
+double PathMotion::speed_bound(double) const { return std::numeric_limits<double>::infinity(); }
+
+KeyframeMotion::KeyframeMotion(std::vector<double> times, std::vector<Eigen::Isometry3d> poses,
+                               Interpolation interpolation, const std::string& field)
+    : times_(std::move(times)), poses_(std::move(poses)), interpolation_(interpolation) {
+  if (times_.size() < 2 || times_.size() != poses_.size())
+    throw InputError(field + "/keyframes", "at least two poses are needed, each with its t");
+  for (std::size_t k = 0; k + 1 < times_.size(); ++k) {
+    if (!(times_[k] < times_[k + 1]))
+      throw InputError(field + "/keyframes/" + std::to_string(k + 1) + "/t",
+                       "the times must increase (" + std::to_string(times_[k + 1]) + " after " +
+                           std::to_string(times_[k]) + ")");
+    const Eigen::Isometry3d& A = poses_[k];
+    const Eigen::Isometry3d& B = poses_[k + 1];
+    const double dt = times_[k + 1] - times_[k];
+    // the rotation from A to B in world coordinates: R_B = R_D R_A
+    const Eigen::AngleAxisd aa(Eigen::Matrix3d(B.linear() * A.linear().transpose()));
+    Segment s;
+    const double phi = aa.angle();
+    if (phi > 1e-12) {
+      s.w = aa.axis();
+      s.rate = phi / dt;
+    }
+    if (interpolation_ == Interpolation::Linear || phi <= 1e-12) {
+      s.dp = (B.translation() - A.translation()) / dt;
+      s.slide = s.dp;
+    } else {
+      // D = B A^-1 as a screw: rotation R_D about the axis through c along w, advancing h along w
+      const Eigen::Matrix3d RD = aa.toRotationMatrix();
+      const Eigen::Vector3d tD = B.translation() - RD * A.translation();
+      const double h = s.w.dot(tD);
+      s.pitch = h / phi;
+      s.c = (Eigen::Matrix3d::Identity() - RD + s.w * s.w.transpose()).lu().solve(tD - h * s.w);
+    }
+    segments_.push_back(s);
+  }
+}
+
+std::size_t KeyframeMotion::segment_of(double t) const {
+  std::size_t k = 0;
+  while (k + 2 < times_.size() && t >= times_[k + 1]) ++k;
+  return k;
+}
+
+PoseJet KeyframeMotion::pose(double t) const {
+  const std::size_t k = segment_of(t);
+  const Segment& s = segments_[k];
+  const Eigen::Isometry3d& A = poses_[k];
+  const double tau = t - times_[k];
+  const Eigen::Matrix3d W = hat(s.w) * s.rate;
+  PoseJet P;
+  const Eigen::Matrix3d Rj = Eigen::AngleAxisd(s.rate * tau, s.w).toRotationMatrix();
+  P.R = Rj * A.linear();
+  P.dR = W * P.R;
+  P.ddR = W * P.dR;
+  if (interpolation_ == Interpolation::Linear || s.rate == 0) {
+    P.p = A.translation() + s.slide * tau;
+    P.dp = s.slide;
+    return P;
+  }
+  P.p = s.c + Rj * (A.translation() - s.c) + s.w * (s.pitch * s.rate * tau);
+  P.dp = s.rate * (s.w.cross(P.p - s.c) + s.pitch * s.w);
+  P.ddp = s.rate * s.w.cross(P.dp);
+  return P;
+}
+
+double KeyframeMotion::speed_bound(double radius) const {
+  double bound = 0;
+  for (std::size_t k = 0; k < segments_.size(); ++k) {
+    const Segment& s = segments_[k];
+    double v = 0;
+    if (interpolation_ == Interpolation::Linear || s.rate == 0)
+      v = s.rate * radius + s.slide.norm();
+    else  // the rotation keeps the pose origin's distance from the axis
+      v = s.rate * (radius + distance_to_axis(poses_[k].translation(), s.c, s.w) + std::abs(s.pitch));
+    bound = std::max(bound, v);
+  }
+  return bound;
+}
+
+}  // namespace sweep
