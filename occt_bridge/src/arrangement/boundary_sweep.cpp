@@ -4,7 +4,6 @@
 #include <BRepAdaptor_Surface.hxx>
 #include <BRepAlgoAPI_BuilderAlgo.hxx>
 #include <BRepAlgoAPI_Section.hxx>
-#include <BRepAlgoAPI_Splitter.hxx>
 #include <BRepBndLib.hxx>
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeSolid.hxx>
@@ -188,17 +187,9 @@ TopoDS_Shape split_at_grazing(const TopoDS_Shape& body, const ScrewJoint& j, dou
     }
   }
   if (tools.IsEmpty()) return body;
-  BRepAlgoAPI_Splitter splitter;
-  TopTools_ListOfShape args;
-  args.Append(body);
-  splitter.SetArguments(args);
-  splitter.SetTools(tools);
-  splitter.SetNonDestructive(true);
-  splitter.SetFuzzyValue(1e-9 * size);
-  splitter.Build(stop_range());
-  check_stop();
-  if (!splitter.IsDone() || splitter.HasErrors()) throw ComputeError("the body's faces could not be split at their grazing curves");
-  return splitter.Shape();
+  const TopoDS_Shape split = split_by_edges(body, tools, 1e-9 * size, SplitMode::NonDestructive);
+  if (split.IsNull()) throw ComputeError("the body's faces could not be split at their grazing curves");
+  return split;
 }
 
 /// Whether two faces lie on one analytic surface (within eps).
@@ -548,21 +539,14 @@ BoundarySweep boundary_sweep(const TopoDS_Shape& body, const ScrewJoint& j, doub
         split_faces[i].push_back(cands[i].face);
         return;
       }
-      BRepAlgoAPI_Splitter sp;
-      TopTools_ListOfShape args, tl;
-      args.Append(cands[i].face);
+      TopTools_ListOfShape tl;
       for (const auto& e : tools[i]) tl.Append(e);
-      sp.SetArguments(args);
-      sp.SetTools(tl);
-      sp.SetNonDestructive(true);
-      sp.SetFuzzyValue(eps);
-      sp.Build(stop_range());
-      check_stop();
-      if (!sp.IsDone() || sp.HasErrors()) {
+      const TopoDS_Shape split = split_by_edges(cands[i].face, tl, eps, SplitMode::NonDestructive);
+      if (split.IsNull()) {
         split_failed[i] = 1;
         return;
       }
-      for (TopExp_Explorer ex(sp.Shape(), TopAbs_FACE); ex.More(); ex.Next())
+      for (TopExp_Explorer ex(split, TopAbs_FACE); ex.More(); ex.Next())
         split_faces[i].push_back(TopoDS::Face(ex.Current()));
     };
   });

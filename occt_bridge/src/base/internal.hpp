@@ -3,6 +3,7 @@
 #include <Bnd_Box.hxx>
 #include <Geom_BSplineSurface.hxx>
 #include <Geom_Curve.hxx>
+#include <TopTools_ListOfShape.hxx>
 #include <TopoDS_Edge.hxx>
 #include <TopoDS_Face.hxx>
 #include <TopoDS_Shape.hxx>
@@ -167,6 +168,13 @@ TopoDS_Shape unify_faces(const TopoDS_Shape& shape);
 /// gets its own worker from make(): OCCT's classifiers and intersectors are not shared between
 /// threads. The first exception thrown by a worker is rethrown.
 void parallel_for(std::size_t n, const std::function<std::function<void(std::size_t)>()>& make);
+
+/// How OCCT's splitter runs: on the machine's cores (the argument's sub-shapes may be modified in
+/// place), or on one thread leaving the argument as it is (for callers already in parallel_for).
+enum class SplitMode { Parallel, NonDestructive };
+/// `shape` split by the edges `tools` at fuzzy value `fuzzy`; null when OCCT fails.
+TopoDS_Shape split_by_edges(const TopoDS_Shape& shape, const TopTools_ListOfShape& tools, double fuzzy,
+                            SplitMode mode);
 
 /// A point membership test, and a maker of one per thread.
 using PointTest = std::function<bool(const Eigen::Vector3d&)>;

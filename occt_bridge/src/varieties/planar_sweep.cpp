@@ -3,7 +3,6 @@
 // at both range ends and on the paths of the curve's end points and of its grazing points (where
 // the velocity is tangent to the curve); the plane is split by those edges and each piece kept when
 // a point inside it is swept (its backward trajectory meets the curve).
-#include <BRepAlgoAPI_Splitter.hxx>
 #include <BRepAdaptor_Surface.hxx>
 #include <BRepBndLib.hxx>
 #include <BRepBuilderAPI_MakeEdge.hxx>
@@ -115,22 +114,14 @@ std::vector<TopoDS_Face> planar_curve_sweep(const Handle(Geom_Curve)& c, double 
   double cu, cv;
   ElSLib::Parameters(plane, gp_Pnt(0.5 * (x0 + x1), 0.5 * (y0 + y1), 0.5 * (z0 + z1)), cu, cv);
   TopoDS_Face big = BRepBuilderAPI_MakeFace(gpl, cu - half, cu + half, cv - half, cv + half, 1e-7).Face();
-  BRepAlgoAPI_Splitter sp;
-  TopTools_ListOfShape args;
-  args.Append(big);
-  sp.SetArguments(args);
-  sp.SetTools(tools);
-  sp.SetRunParallel(true);
-  sp.SetFuzzyValue(1e-9 * size);
-  sp.Build(stop_range());
-  check_stop();
-  if (!sp.IsDone() || sp.HasErrors()) throw ComputeError("could not split the plane of a planar sweep");
+  const TopoDS_Shape split = split_by_edges(big, tools, 1e-9 * size, SplitMode::Parallel);
+  if (split.IsNull()) throw ComputeError("could not split the plane of a planar sweep");
 
   TopoDS_Compound kept;
   BRep_Builder bb;
   bb.MakeCompound(kept);
   int nkept = 0;
-  for (TopExp_Explorer ex(sp.Shape(), TopAbs_FACE); ex.More(); ex.Next()) {
+  for (TopExp_Explorer ex(split, TopAbs_FACE); ex.More(); ex.Next()) {
     const TopoDS_Face& f = TopoDS::Face(ex.Current());
     double u0, u1, v0, v1;
     BRepTools::UVBounds(f, u0, u1, v0, v1);

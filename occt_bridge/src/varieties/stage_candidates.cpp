@@ -1,6 +1,5 @@
 // Candidate varieties of one stage: the sweeps of the body's edges and grazing curves, the body
 // at both ends of the range, and the direct builds that need no arrangement.
-#include <BRepAlgoAPI_Splitter.hxx>
 #include <BRepLib.hxx>
 #include <Geom_Line.hxx>
 #include <ShapeAnalysis_Shell.hxx>
@@ -248,19 +247,11 @@ void add_edge_sweeps(const StageInput& in, double& fit_err, Candidates& cand, st
 std::vector<TopoDS_Face> split_at_grazing_curves(const TopoDS_Face& face, const TopTools_ListOfShape& tools,
                                                  double esize) {
   if (tools.IsEmpty()) return {face};
-  BRepAlgoAPI_Splitter splitter;
-  TopTools_ListOfShape args;
-  args.Append(face);
-  splitter.SetArguments(args);
-  splitter.SetTools(tools);
-  splitter.SetRunParallel(true);
-  splitter.SetFuzzyValue(1e-9 * esize);
-  splitter.Build(stop_range());
-  check_stop();
-  if (!splitter.IsDone() || splitter.HasErrors()) return {face};
+  const TopoDS_Shape split = split_by_edges(face, tools, 1e-9 * esize, SplitMode::Parallel);
+  if (split.IsNull()) return {face};
   std::vector<TopoDS_Face> split_faces;
   double area = 0.0;
-  for (TopExp_Explorer ex(splitter.Shape(), TopAbs_FACE); ex.More(); ex.Next()) {
+  for (TopExp_Explorer ex(split, TopAbs_FACE); ex.More(); ex.Next()) {
     split_faces.push_back(TopoDS::Face(ex.Current()));
     GProp_GProps g;
     BRepGProp::SurfaceProperties(split_faces.back(), g);
