@@ -1,7 +1,7 @@
 // One stage of the cells path: the solid swept by a body under one joint, in four steps, each in
-// its own file: candidate varieties (stage_candidates.cpp), candidates left out as duplicates or
-// as internal (candidate_pruning.cpp), the arrangement of the rest and the classification of its
-// cells (stage_cells.cpp).
+// its own file: candidate varieties (varieties/stage_candidates.cpp), candidates left out as
+// duplicates or as internal (arrangement/candidate_pruning.cpp), the arrangement of the rest and
+// the classification of its cells (arrangement/stage_cells.cpp).
 #pragma once
 
 #include <TopoDS_Edge.hxx>
