@@ -105,6 +105,7 @@ TEST_CASE("Cases: every shared case reproduces its expected volume") {
 
 TEST_CASE("Examples: every example with an expected volume reproduces it") {
   auto files = sweep_test::json_files(SWEEP_SOURCE_DIR "/examples");
+  for (const auto& f : sweep_test::json_files(SWEEP_SOURCE_DIR "/examples/motions")) files.push_back(f);
   for (const auto& f : sweep_test::json_files(SWEEP_SOURCE_DIR "/examples/chains"))
     if (f.find("sphere_four_prismatic") == std::string::npos) files.push_back(f);  // no closed form: see below
   REQUIRE_FALSE(files.empty());

@@ -387,8 +387,8 @@ TEST_CASE("Spec: unknown motion kind", "[spec]") {
   const InputError e = expect_error(doc(kSphere, R"({"kind": "wobble"})"), "/motion/kind");
   CHECK(contains(e.what(), "unknown motion kind 'wobble'"));
   CHECK(contains(e.what(), "screw"));
-  const InputError later = expect_error(doc(kSphere, R"({"kind": "path", "t": [0, 1]})"), "/motion/kind");
-  CHECK(std::string(later.what()) == "motion kind 'path' is not supported yet");
+  const InputError later = expect_error(doc(kSphere, R"({"kind": "polyscrew", "screws": []})"), "/motion/kind");
+  CHECK(std::string(later.what()) == "motion kind 'polyscrew' is not supported yet");
 }
 
 TEST_CASE("Spec: missing field", "[spec]") {
@@ -587,4 +587,75 @@ TEST_CASE("Spec: other validation errors", "[spec]") {
                                "direction": [0, 0, 1], "pitch": 0, "range": [0, 1]}]})"),
                "/motion/joints/0/pitch");
   expect_error("[1, 2]", "");
+}
+
+TEST_CASE("Spec: a path motion and its bad input by field", "[spec]") {
+  const sweep::Spec s = sweep::parse_spec(
+      doc(kSphere, R"({"kind": "path", "t": [0, 2], "translate": ["t", 0, "t^2"],
+                       "rotate": [{"axis": [1, 0, 0], "angle": "90*t"}, {"axis": ["1", "t", 0], "angle": 10}]})",
+          "  \"angles\": \"deg\",\n"),
+      ".");
+  REQUIRE(s.motion.stage);
+  CHECK(s.motion.kind == sweep::MotionKind::Path);
+  CHECK(s.motion.stage->lo() == 0.0);
+  CHECK(s.motion.stage->hi() == 2.0);
+  // x goes to translate(t) + R_x(90 t deg) R_(1,t,0)(10 deg) x
+  const double t = 1.5;
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(M_PI / 2 * t, Eigen::Vector3d::UnitX()).toRotationMatrix() *
+                            Eigen::AngleAxisd(M_PI / 18, Eigen::Vector3d(1, t, 0).normalized()).toRotationMatrix();
+  const Eigen::Vector3d x(0.3, -1, 2);
+  CHECK((s.motion.stage->transform(t) * x - (Eigen::Vector3d(t, 0, t * t) + R * x)).norm() < 1e-12);
+
+  const std::string ok_translate = R"("translate": ["t", 0, 0])";
+  expect_error(doc(kSphere, R"({"kind": "path", "t": [1, 1], )" + ok_translate + "}"), "/motion/t");
+  const InputError var = expect_error(doc(kSphere, R"({"kind": "path", "t": [0, 1], "translate": ["t", "s", 0]})"),
+                                      "/motion/translate/1");
+  CHECK(contains(var.what(), "s"));
+  expect_error(doc(kSphere, R"({"kind": "path", "t": [0, 1], "translate": ["t", 0]})"), "/motion/translate");
+  expect_error(doc(kSphere, R"J({"kind": "path", "t": [0, 1], "translate": ["log(t-1)", 0, 0]})J"),
+               "/motion/translate/0");
+  const InputError axis = expect_error(
+      doc(kSphere, R"({"kind": "path", "t": [0, 2], )" + ok_translate + R"(, "rotate": {"axis": ["1-t", 0, 0], "angle": "t"}})"),
+      "/motion/rotate/axis");
+  CHECK(contains(axis.what(), "vanishes at t = 1"));
+  expect_error(doc(kSphere, R"({"kind": "path", "t": [0, 2], )" + ok_translate +
+                                R"(, "rotate": [{"axis": [0, 0, 1], "angle": "t"}, {"axis": [0, 0, 1]}]})"),
+               "/motion/rotate/1/angle");
+  expect_error(doc(kSphere, R"({"kind": "path", "t": [0, 2], )" + ok_translate + R"(, "speed": 3})"), "/motion/speed");
+}
+
+TEST_CASE("Spec: a keyframes motion and its bad input by field", "[spec]") {
+  const sweep::Spec s = sweep::parse_spec(
+      doc(kSphere, R"({"kind": "keyframes", "interpolation": "linear", "poses": [
+            {"t": 0, "translate": [0, 0, 0]},
+            {"t": 1, "translate": [1, 0, 0], "rotate": {"axis": [0, 0, 1], "angle": 90}},
+            {"t": 3, "matrix": [[1, 0, 0, 2], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]}]})",
+          "  \"angles\": \"deg\",\n"),
+      ".");
+  REQUIRE(s.motion.stage);
+  CHECK(s.motion.kind == sweep::MotionKind::Keyframes);
+  CHECK(s.motion.stage->hi() == 3.0);
+  const Eigen::Isometry3d M = s.motion.stage->transform(1.0);
+  CHECK((M.translation() - Eigen::Vector3d(1, 0, 0)).norm() < 1e-12);
+  CHECK((M.linear() * Eigen::Vector3d::UnitX() - Eigen::Vector3d::UnitY()).norm() < 1e-12);
+  CHECK((s.motion.stage->transform(3.0).translation() - Eigen::Vector3d(2, 0, 0)).norm() < 1e-12);
+  // screw interpolation is the default
+  const sweep::Spec d = sweep::parse_spec(
+      doc(kSphere, R"({"kind": "keyframes", "poses": [{"t": 0}, {"t": 1, "translate": [0, 0, 1]}]})"), ".");
+  REQUIRE(dynamic_cast<const sweep::KeyframeMotion*>(d.motion.stage.get()));
+  CHECK(dynamic_cast<const sweep::KeyframeMotion*>(d.motion.stage.get())->interpolation() ==
+        sweep::KeyframeMotion::Interpolation::Screw);
+
+  const InputError order = expect_error(
+      doc(kSphere, R"({"kind": "keyframes", "poses": [{"t": 0}, {"t": 2}, {"t": 1}]})"), "/motion/poses/2/t");
+  CHECK(contains(order.what(), "increase"));
+  expect_error(doc(kSphere, R"({"kind": "keyframes", "poses": [{"t": 0}]})"), "/motion/poses");
+  expect_error(doc(kSphere, R"({"kind": "keyframes", "poses": [{"t": 0}, {"translate": [1, 0, 0]}]})"),
+               "/motion/poses/1/t");
+  expect_error(doc(kSphere, R"({"kind": "keyframes", "interpolation": "cubic", "poses": [{"t": 0}, {"t": 1}]})"),
+               "/motion/interpolation");
+  expect_error(doc(kSphere, R"({"kind": "keyframes", "poses": [{"t": 0}, {"t": 1, "rotate": {"axis": [0, 0, 0], "angle": 1}}]})"),
+               "/motion/poses/1/rotate/axis");
+  expect_error(doc(kSphere, R"({"kind": "keyframes", "poses": [{"t": 0}, {"t": 1, "scale": 2}]})"),
+               "/motion/poses/1/scale");
 }

@@ -176,7 +176,7 @@ TEST_CASE("Stage motions: bad input names its field", "[stage_motion]") {
                    KeyframeMotion::Interpolation::Screw);
     FAIL("decreasing keyframe times were accepted");
   } catch (const InputError& e) {
-    CHECK(e.pointer() == "/motion/keyframes/2/t");
+    CHECK(e.pointer() == "/motion/poses/2/t");
   }
   CHECK_THROWS_AS(KeyframeMotion({0}, {random_pose(rng)}, KeyframeMotion::Interpolation::Linear), InputError);
 }

@@ -937,6 +937,99 @@ void parse_dh(const Ctx& c, const ojson& m, const std::string& ptr, MotionSpec& 
   out.motion.home = frame;
 }
 
+/// An angle expression in t, in radians (the spec's angle unit applies to the value).
+Expr angle_in_t(const Ctx& c, const ojson& j, const std::string& ptr) {
+  const Expr e = expression(c, j, ptr, {"t"});
+  if (!c.degrees) return e;
+  try {
+    return Expr::parse("(" + e.text() + ")*pi/180", {"t"});
+  } catch (const ExprError& err) {
+    throw InternalError("cannot convert expression \"" + e.text() + "\" to radians: " + err.what());
+  }
+}
+
+/// One rotation of a path, {axis: 3 numbers or expressions in t, angle: expression in t}, checked
+/// finite over [lo, hi] with an axis that never vanishes.
+PathRotation path_rotation(const Ctx& c, const ojson& r, const std::string& rp, double lo, double hi) {
+  object(c, r, rp);
+  check_fields(c, r, rp, {"axis", "angle"}, "a rotation of a path");
+  const std::string ap = child(rp, "axis");
+  const ojson& a = field(c, r, rp, "axis");
+  if (!a.is_array() || a.size() != 3)
+    c.fail(ap, "must be an array of 3 numbers or expressions in t (got " + describe(a) + ")");
+  PathRotation out;
+  for (std::size_t k = 0; k < 3; ++k) {
+    out.axis[k] = expression(c, a[k], child(ap, k), {"t"});
+    check_finite_over(c, out.axis[k], lo, hi, child(ap, k), "t", out.axis[k].text());
+  }
+  const ojson& angle = field(c, r, rp, "angle");
+  out.angle = angle_in_t(c, angle, child(rp, "angle"));
+  check_finite_over(c, out.angle, lo, hi, child(rp, "angle"), "t", expression(c, angle, child(rp, "angle"), {"t"}).text());
+  const int n = 1024;
+  for (int s = 0; s <= n; ++s) {
+    const double t = lo + (hi - lo) * s / n;
+    const Eigen::Vector3d v(out.axis[0].eval(&t), out.axis[1].eval(&t), out.axis[2].eval(&t));
+    if (!(v.norm() > 1e-12)) c.fail(ap, "the rotation axis vanishes at t = " + fmt_num(t) + " (got " + describe(a) + ")");
+  }
+  return out;
+}
+
+void parse_path(const Ctx& c, const ojson& m, const std::string& ptr, MotionSpec& out) {
+  check_fields(c, m, ptr, {"kind", "t", "translate", "rotate"}, "a 'path' motion");
+  const auto r = range(c, field(c, m, ptr, "t"), child(ptr, "t"));
+  const std::string tp = child(ptr, "translate");
+  const ojson& tr = field(c, m, ptr, "translate");
+  if (!tr.is_array() || tr.size() != 3)
+    c.fail(tp, "must be an array of 3 expressions in t (got " + describe(tr) + ")");
+  Expr translate[3];
+  for (std::size_t k = 0; k < 3; ++k) {
+    translate[k] = expression(c, tr[k], child(tp, k), {"t"});
+    check_finite_over(c, translate[k], r.first, r.second, child(tp, k), "t", translate[k].text());
+  }
+  std::vector<PathRotation> rotations;
+  if (const ojson* rot = optional_field(m, "rotate")) {
+    const std::string rp = child(ptr, "rotate");
+    if (rot->is_array()) {
+      if (rot->empty()) c.fail(rp, "must be a rotation or a non-empty list of rotations (got [])");
+      for (std::size_t k = 0; k < rot->size(); ++k)
+        rotations.push_back(path_rotation(c, (*rot)[k], child(rp, k), r.first, r.second));
+    } else {
+      rotations.push_back(path_rotation(c, *rot, rp, r.first, r.second));
+    }
+  }
+  out.stage = std::make_shared<PathMotion>(r.first, r.second, translate, std::move(rotations), ptr);
+}
+
+void parse_keyframes(const Ctx& c, const ojson& m, const std::string& ptr, MotionSpec& out) {
+  check_fields(c, m, ptr, {"kind", "poses", "interpolation"}, "a 'keyframes' motion");
+  auto interpolation = KeyframeMotion::Interpolation::Screw;
+  if (const ojson* ip = optional_field(m, "interpolation")) {
+    const std::string how = string_value(c, *ip, child(ptr, "interpolation"));
+    if (how == "linear")
+      interpolation = KeyframeMotion::Interpolation::Linear;
+    else if (how != "screw")
+      c.fail(child(ptr, "interpolation"), "must be \"screw\" or \"linear\" (got \"" + how + "\")");
+  }
+  const std::string pp = child(ptr, "poses");
+  const ojson& poses = field(c, m, ptr, "poses");
+  if (!poses.is_array() || poses.size() < 2)
+    c.fail(pp, "must be a list of at least two poses {t, translate, rotate} or {t, matrix} (got " + describe(poses) + ")");
+  std::vector<double> times;
+  std::vector<Eigen::Isometry3d> placements;
+  for (std::size_t k = 0; k < poses.size(); ++k) {
+    const std::string kp = child(pp, k);
+    object(c, poses[k], kp);
+    const double t = number(c, field(c, poses[k], kp, "t"), child(kp, "t"));
+    if (!times.empty() && !(t > times.back()))
+      c.fail(child(kp, "t"), "the times must increase (got " + fmt_num(t) + " after " + fmt_num(times.back()) + ")");
+    ojson pose = poses[k];
+    pose.erase("t");
+    times.push_back(t);
+    placements.push_back(placement(c, pose, kp));
+  }
+  out.stage = std::make_shared<KeyframeMotion>(std::move(times), std::move(placements), interpolation, ptr);
+}
+
 MotionSpec motion(const Ctx& c, const ojson& j, const std::string& ptr) {
   object(c, j, ptr);
   const std::string kp = child(ptr, "kind");
@@ -951,7 +1044,13 @@ MotionSpec motion(const Ctx& c, const ojson& j, const std::string& ptr) {
   } else if (kind == "screw") {
     m.kind = MotionKind::Screw;
     parse_screw(c, j, ptr, m);
-  } else if (kind == "path" || kind == "keyframes" || kind == "toolpath" || kind == "polyscrew") {
+  } else if (kind == "path") {
+    m.kind = MotionKind::Path;
+    parse_path(c, j, ptr, m);
+  } else if (kind == "keyframes") {
+    m.kind = MotionKind::Keyframes;
+    parse_keyframes(c, j, ptr, m);
+  } else if (kind == "toolpath" || kind == "polyscrew") {
     c.fail(kp, "motion kind '" + kind + "' is not supported yet");
   } else {
     c.fail(kp, "unknown motion kind '" + kind +

@@ -168,10 +168,10 @@ KeyframeMotion::KeyframeMotion(std::vector<double> times, std::vector<Eigen::Iso
                                Interpolation interpolation, const std::string& field)
     : times_(std::move(times)), poses_(std::move(poses)), interpolation_(interpolation) {
   if (times_.size() < 2 || times_.size() != poses_.size())
-    throw InputError(field + "/keyframes", "at least two poses are needed, each with its t");
+    throw InputError(field + "/poses", "at least two poses are needed, each with its t");
   for (std::size_t k = 0; k + 1 < times_.size(); ++k) {
     if (!(times_[k] < times_[k + 1]))
-      throw InputError(field + "/keyframes/" + std::to_string(k + 1) + "/t",
+      throw InputError(field + "/poses/" + std::to_string(k + 1) + "/t",
                        "the times must increase (" + std::to_string(times_[k + 1]) + " after " +
                            std::to_string(times_[k]) + ")");
     const Eigen::Isometry3d& A = poses_[k];
@@ -240,6 +240,34 @@ double KeyframeMotion::speed_bound(double radius) const {
     bound = std::max(bound, v);
   }
   return bound;
+}
+
+std::vector<KeyframeMotion::ScrewSegment> KeyframeMotion::screw_segments() const {
+  std::vector<ScrewSegment> out;
+  if (interpolation_ != Interpolation::Screw) return out;
+  for (std::size_t k = 0; k < segments_.size(); ++k) {
+    const Segment& s = segments_[k];
+    const double dt = times_[k + 1] - times_[k];
+    ScrewSegment seg;
+    seg.start = poses_[k];
+    seg.t0 = times_[k];
+    seg.t1 = times_[k + 1];
+    if (s.rate > 0) {
+      seg.joint.type = s.pitch == 0 ? JointType::Revolute : JointType::Helical;
+      seg.joint.point = s.c;
+      seg.joint.direction = s.w;
+      seg.joint.pitch = s.pitch;
+      seg.joint.hi = s.rate * dt;
+    } else {
+      const double length = s.slide.norm() * dt;
+      if (!(length > 0)) continue;  // the pose stays: nothing new is swept
+      seg.joint.type = JointType::Prismatic;
+      seg.joint.direction = s.slide.normalized();
+      seg.joint.hi = length;
+    }
+    out.push_back(seg);
+  }
+  return out;
 }
 
 }  // namespace sweep

@@ -14,6 +14,9 @@
 
 namespace sweep::occt {
 
+/// The sweep of a spec whose motion is a one-parameter stage motion (`path`, `keyframes`).
+RunResult run_stage_motion_sweep(const Spec& spec, const RunOptions& opt);
+
 /// The trajectory of a point under one joint as an edge (the sweep of a point).
 TopoDS_Shape point_sweep(const TopoDS_Shape& body, const ScrewJoint& j, double T, double tol, double size);
 
@@ -49,6 +52,10 @@ class FinalChecks {
   FinalChecks(Report& rep, IndependentMembership independent, const Eigen::AlignedBox3d& true_box, double tol,
               double size, const double& fit_err, const Settings& settings, std::string no_test);
   std::string operator()(const TopoDS_Shape& solid);
+  /// The checks of `result`, which an invalid solid passes once healed (then `result` is the
+  /// healed solid and `stage` goes to the report's healed stages) and a solid with a geometric error
+  /// passes with its pcurves projected again: the reason it fails, or empty.
+  std::string judge(TopoDS_Shape& result, int stage);
   /// Whether the last failure is one that a face left out by pruning can cause (a missing or
   /// wrong piece of boundary); a geometric error or an undecided verdict is not.
   bool rebuild_may_help() const { return rebuild_may_help_; }

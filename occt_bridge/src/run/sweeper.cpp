@@ -221,6 +221,7 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
     rep.seconds_total = since(t_start);
     return res;
   };
+  if (spec.motion.stage) return run_stage_motion_sweep(spec, opt);
   if (motion.dof() == 0) return fail("the motion has no joint");
   install_signal_handlers();
   const StopScope stop_scope(opt.stop);
@@ -374,27 +375,7 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
         swept_box(entity_box, clipped), tol, size, fit_err, opt.settings,
         "no membership test independent of the solid exists for a " + std::string(to_string(spec.entity.kind)) +
             " entity under " + std::to_string(n) + " joints: the solid cannot be checked");
-    std::string why = check_result(result);
-    if (why == FinalChecks::invalid) {
-      const TopoDS_Shape h = healed(result);
-      if (!h.IsNull()) {
-        // the report now describes the healed solid, and so does the reason when it still fails
-        const std::string why_healed = check_result(h);
-        if (why_healed.empty() || check_result.geometric_error()) {
-          result = h;
-          rep.healed_stages.push_back(n);
-          why = why_healed;
-        } else {
-          why = why_healed + " (after OCCT's shape healing of a solid that was not valid)";
-        }
-      }
-    }
-    if (check_result.geometric_error()) {
-      // A pcurve that strays from its edge (a fuse's or the healing's approximation) is
-      // projected again from the edge's 3-D curve; the solid is then checked again in full.
-      for (TopExp_Explorer fx(result, TopAbs_FACE); fx.More(); fx.Next()) tighten_pcurves(TopoDS::Face(fx.Current()), 0.5 * tol);
-      why = check_result(result);
-    }
+    std::string why = check_result.judge(result, n);
     if (!why.empty() && redo_last && check_result.rebuild_may_help()) {
       // Pruning may have left out a face that carries a strip of the boundary: the last stage
       // is built again from every candidate.

@@ -52,6 +52,8 @@ std::pair<double, double> face_integrals(const TopoDS_Face& face) {
   TopoDS_Face fwd = TopoDS::Face(face.Oriented(TopAbs_FORWARD));
   for (TopExp_Explorer ex(fwd, TopAbs_EDGE); ex.More(); ex.Next()) {
     TopoDS_Edge e = TopoDS::Edge(ex.Current());
+    // an edge inside the face (or outside it) has the face on both sides: its two passes cancel
+    if (e.Orientation() == TopAbs_INTERNAL || e.Orientation() == TopAbs_EXTERNAL) continue;
     BRepAdaptor_Curve2d c(e, fwd);
     double a = c.FirstParameter(), b = c.LastParameter();
     const double sign = e.Orientation() == TopAbs_REVERSED ? -1.0 : 1.0;

@@ -3,6 +3,7 @@
 #include <BRepClass3d_SolidClassifier.hxx>
 #include <BRepTools.hxx>
 #include <TopExp_Explorer.hxx>
+#include <TopoDS.hxx>
 #include <cmath>
 #include <cstdlib>
 
@@ -51,6 +52,32 @@ IndependentMembership independent_membership(const EntitySpec& entity, const Mot
 }
 
 const std::string FinalChecks::invalid = "the solid is not valid (BRepCheck)";
+
+std::string FinalChecks::judge(TopoDS_Shape& result, int stage) {
+  std::string why = (*this)(result);
+  if (why == invalid) {
+    const TopoDS_Shape h = healed(result);
+    if (!h.IsNull()) {
+      // the report now describes the healed solid, and so does the reason when it still fails
+      const std::string why_healed = (*this)(h);
+      if (why_healed.empty() || geometric_error()) {
+        result = h;
+        rep_.healed_stages.push_back(stage);
+        why = why_healed;
+      } else {
+        why = why_healed + " (after OCCT's shape healing of a solid that was not valid)";
+      }
+    }
+  }
+  if (geometric_error()) {
+    // A pcurve that strays from its edge (a fuse's or the healing's approximation) is projected
+    // again from the edge's 3-D curve; the solid is then checked again in full.
+    for (TopExp_Explorer fx(result, TopAbs_FACE); fx.More(); fx.Next())
+      tighten_pcurves(TopoDS::Face(fx.Current()), 0.5 * tol_);
+    why = (*this)(result);
+  }
+  return why;
+}
 
 FinalChecks::FinalChecks(Report& rep, IndependentMembership independent, const Eigen::AlignedBox3d& true_box,
                          double tol, double size, const double& fit_err, const Settings& settings, std::string no_test)

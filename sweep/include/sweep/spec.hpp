@@ -3,6 +3,7 @@
 /// Sweep spec v1 (SPEC.md): the parsed, validated form of a spec file.
 #include <Eigen/Geometry>
 #include <array>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -10,6 +11,7 @@
 
 #include "sweep/expr.hpp"
 #include "sweep/motion.hpp"
+#include "sweep/stage_motion.hpp"
 
 namespace sweep {
 
@@ -67,6 +69,8 @@ struct MotionSpec {
   std::vector<DhRow> dh;  ///< kind dh: the table as written
   /// The motion as a product of exponentials (every kind that reduces to screws: dh, axes, screw).
   Motion motion;
+  /// A one-parameter motion that is not a chain of screws (kinds path and keyframes); null otherwise.
+  std::shared_ptr<const StageMotion> stage;
 };
 
 struct Spec {

@@ -100,6 +100,19 @@ class KeyframeMotion : public StageMotion {
   double hi() const override { return times_.back(); }
   PoseJet pose(double t) const override;
   double speed_bound(double radius) const override;
+  Interpolation interpolation() const { return interpolation_; }
+  const std::vector<double>& times() const { return times_; }
+  const std::vector<Eigen::Isometry3d>& poses() const { return poses_; }
+
+  /// A screw segment as a joint: the body at `start` (the pose at t0) moved by joint.transform(q)
+  /// for q in [0, joint.hi] is the motion over [t0, t1].
+  struct ScrewSegment {
+    ScrewJoint joint;
+    Eigen::Isometry3d start = Eigen::Isometry3d::Identity();
+    double t0 = 0, t1 = 0;
+  };
+  /// The segments of screw interpolation (empty for linear), those that keep the pose left out.
+  std::vector<ScrewSegment> screw_segments() const;
 
  private:
   /// Segment k: from pose k, the rotation angle rate `rate` (radians per unit t) about unit axis

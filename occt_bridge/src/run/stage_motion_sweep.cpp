@@ -1,0 +1,281 @@
+// Sweeps under one-parameter motions that are not chains of screws (SPEC.md `path`, `keyframes`).
+// Keyframes with screw interpolation are a sequence of screw segments: each segment is the
+// one-joint sweep of the entity at its start pose (the engine of run_sweep), and the set is their
+// union, judged by the union of the segments' own independent memberships. Under a general motion
+// a ball sweeps the tube about its centre's path (varieties/ball_path.cpp), judged by a branch and
+// bound over t (sweep/stage_membership.hpp); other entities under general motions are not built
+// yet and fail with that reason.
+#include <BRepAlgoAPI_Fuse.hxx>
+#include <BRepBndLib.hxx>
+#include <BRep_Builder.hxx>
+#include <Standard_ErrorHandler.hxx>
+#include <Standard_Failure.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopTools_ListOfShape.hxx>
+#include <TopoDS_Compound.hxx>
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include "arrangement/stage_sweep.hpp"
+#include "base/internal.hpp"
+#include "base/stop.hpp"
+#include "run/run_steps.hpp"
+#include "sweep/error.hpp"
+#include "sweep/stage_membership.hpp"
+#include "sweep/swept_box.hpp"
+#include "varieties/ball_path.hpp"
+#include "verdict/solid_checks.hpp"
+
+namespace sweep::occt {
+namespace {
+
+Eigen::AlignedBox3d box_of(const TopoDS_Shape& s) {
+  const Bnd_Box b = shape_box(s);
+  double x0, y0, z0, x1, y1, z1;
+  b.Get(x0, y0, z0, x1, y1, z1);
+  return Eigen::AlignedBox3d(Eigen::Vector3d(x0, y0, z0), Eigen::Vector3d(x1, y1, z1));
+}
+
+/// The model size: the entity's extent and the box of its corners at sampled poses.
+double stage_model_size(const TopoDS_Shape& raw, const StageMotion& m) {
+  const Eigen::AlignedBox3d eb = box_of(raw);
+  Eigen::AlignedBox3d reach;
+  for (int s = 0; s <= 64; ++s) {
+    const Eigen::Isometry3d M = m.transform(m.lo() + (m.hi() - m.lo()) * s / 64.0);
+    for (int k = 0; k < 8; ++k) reach.extend(M * eb.corner(Eigen::AlignedBox3d::CornerType(k)));
+  }
+  return std::max({eb.sizes().maxCoeff(), reach.sizes().maxCoeff(), 1e-300});
+}
+
+/// In when any part says in; undecided when none does and one is undecided.
+IndependentMembership union_of(const std::vector<IndependentMembership>& parts) {
+  std::vector<MemberTestMaker> makers;
+  for (const auto& p : parts) makers.push_back(p.test);
+  return {[makers]() -> MemberTest {
+            std::vector<MemberTest> tests;
+            for (const auto& m : makers) tests.push_back(m());
+            return [tests](const Eigen::Vector3d& x) {
+              int result = 0;
+              for (const auto& t : tests) {
+                const int r = t(x);
+                if (r == 1) return 1;
+                if (r < 0) result = -1;
+              }
+              return result;
+            };
+          },
+          "union over the segments of: " + parts.front().name};
+}
+
+/// The checks of a solid result, the Monte Carlo volume of --verify by `member`, the verdict.
+void finish_solid(TopoDS_Shape result, FinalChecks& check, const MemberTestMaker& member, double size, double tol,
+                  const RunOptions& opt, RunResult& res) {
+  Report& rep = res.report;
+  std::string why = check.judge(result, 1);
+  if (opt.verify) {
+    if (opt.progress) opt.progress("Monte Carlo volume");
+    const auto t_mc = Clock::now();
+    Eigen::AlignedBox3d box(Eigen::Vector3d(rep.bbox_min[0], rep.bbox_min[1], rep.bbox_min[2]),
+                            Eigen::Vector3d(rep.bbox_max[0], rep.bbox_max[1], rep.bbox_max[2]));
+    box.extend(box.min() - Eigen::Vector3d::Constant(0.01 * size));
+    box.extend(box.max() + Eigen::Vector3d::Constant(0.01 * size));
+    const MemberTest in = member();
+    const MonteCarloResult mc = monte_carlo_volume([&](const Eigen::Vector3d& x) { return in(x) == 1; }, box,
+                                                   std::min<std::size_t>(opt.settings.mc_samples, 100000),
+                                                   opt.settings.seed);
+    rep.has_mc = true;
+    rep.volume_mc = mc.volume;
+    rep.volume_mc_stderr = mc.stderr_;
+    rep.mc_samples = mc.samples;
+    rep.seconds["monte_carlo"] = since(t_mc);
+  }
+  const double vtol = tol * size * size + opt.settings.volume_relative_band * size * size * size;
+  if (why.empty() && rep.has_mc && std::abs(rep.volume_brep - rep.volume_mc) > 4.5 * rep.volume_mc_stderr + vtol)
+    why = "B-rep and Monte Carlo volumes disagree (" + std::to_string(rep.volume_brep) + " vs " +
+          std::to_string(rep.volume_mc) + " +- " + std::to_string(rep.volume_mc_stderr) + ")";
+  rep.status = why.empty() ? "ok" : "failed";
+  rep.message = why;
+  res.shape = std::make_shared<Shape>(result);
+}
+
+/// The union of solids (one general fuse), its faces merged where they continue one surface.
+TopoDS_Shape fused(const std::vector<TopoDS_Shape>& parts, double size) {
+  if (parts.size() == 1) return parts.front();
+  TopTools_ListOfShape args, tools;
+  args.Append(parts.front());
+  for (std::size_t k = 1; k < parts.size(); ++k) tools.Append(parts[k]);
+  BRepAlgoAPI_Fuse fuse;
+  fuse.SetArguments(args);
+  fuse.SetTools(tools);
+  fuse.SetRunParallel(true);
+  fuse.SetFuzzyValue(1e-9 * size);
+  fuse.SetNonDestructive(true);
+  fuse.Build(stop_range());
+  check_stop();
+  if (!fuse.IsDone() || fuse.HasErrors()) throw ComputeError("the union of the segments' solids failed (OCCT's fuse)");
+  TopoDS_Shape s = fuse.Shape();
+  const TopoDS_Shape u = unify_faces(s);
+  if (!u.IsNull()) s = u;
+  TopExp_Explorer sx(s, TopAbs_SOLID);
+  if (sx.More()) {
+    const TopoDS_Shape first = sx.Current();
+    sx.Next();
+    if (!sx.More()) return first;
+  }
+  return s;
+}
+
+/// Keyframes with screw interpolation: the union of the segments' screw sweeps.
+void keyframe_screw_sweep(const Spec& spec, const KeyframeMotion& km, const RunOptions& opt, RunResult& res) {
+  Report& rep = res.report;
+  const auto segments = km.screw_segments();
+  if (segments.empty()) throw ComputeError("the poses never move the entity: nothing is swept");
+  double fit_err = 0;
+  const TopoDS_Shape raw = entity_shape(spec.entity, 1e-9, &fit_err);
+  const double size = stage_model_size(raw, km);
+  rep.tol_requested = spec.tolerance > 0 ? spec.tolerance : 1e-6 * size;
+  const double tol = rep.tol_requested;
+  std::vector<TopoDS_Shape> parts;
+  std::vector<IndependentMembership> members;
+  Eigen::AlignedBox3d true_box;
+  const std::unique_ptr<SignedDistance> sd = make_signed_distance(spec.entity);
+  const std::unique_ptr<ParametricEntity> pe = ParametricEntity::make(spec.entity);
+  const Eigen::AlignedBox3d entity_box = box_of(raw);
+  int dim = 0;
+  for (std::size_t k = 0; k < segments.size(); ++k) {
+    const auto& seg = segments[k];
+    const std::string name = "segment " + std::to_string(k + 1) + "/" + std::to_string(segments.size()) +
+                             " (t in [" + std::to_string(seg.t0) + ", " + std::to_string(seg.t1) + "])";
+    Spec sub = spec;
+    sub.motion = MotionSpec();
+    sub.motion.kind = MotionKind::Screw;
+    sub.motion.motion.joints = {seg.joint};
+    sub.motion.motion.home = seg.start;
+    sub.tolerance = tol;
+    RunOptions so = opt;
+    so.verify = false;
+    so.varieties = nullptr;
+    so.variety_faces = nullptr;
+    so.variety_face_ids = nullptr;
+    if (opt.progress) so.progress = [&opt, name](const std::string& what) { opt.progress(name + ": " + what); };
+    const RunResult r = run_sweep(sub, so);
+    if (!r.report.ok() || !r.shape) throw ComputeError(name + ": " + r.report.message);
+    parts.push_back(r.shape->shape);
+    fit_err = std::max(fit_err, r.report.tol_achieved);
+    dim = r.report.dimension;
+    rep.varieties += r.report.varieties;
+    rep.cells += r.report.cells;
+    for (auto it = r.report.seconds.begin(); it != r.report.seconds.end(); ++it)
+      if (it.value().is_number()) rep.seconds[it.key()] = rep.seconds.value(it.key(), 0.0) + it.value().get<double>();
+    if (dim == 3) {
+      members.push_back(independent_membership(spec.entity, sub.motion.motion, raw, sd.get(), pe.get(), size, opt.settings));
+      if (!members.back().test) throw ComputeError(name + ": no membership test independent of the solid exists");
+      true_box.extend(swept_box(entity_box, sub.motion.motion));
+    }
+  }
+  rep.dimension = dim;
+  if (dim < 3) {
+    TopoDS_Compound comp;
+    BRep_Builder bb;
+    bb.MakeCompound(comp);
+    for (const auto& p : parts) bb.Add(comp, p);
+    res.shape = std::make_shared<Shape>(finish_curve_or_surface(comp, dim, size, fit_err, opt.verify, rep));
+    return;
+  }
+  if (opt.progress) opt.progress("the union of " + std::to_string(parts.size()) + " segments");
+  const TopoDS_Shape result = fused(parts, size);
+  const IndependentMembership member = union_of(members);
+  FinalChecks check(rep, member, true_box, tol, size, fit_err, opt.settings, "");
+  finish_solid(result, check, member.test, size, tol, opt, res);
+}
+
+/// A ball under a general one-parameter motion, given as pieces along which its centre's path is
+/// smooth (the whole motion, or the segments of linear keyframes): the union of their tubes.
+void ball_stage_sweep(const Spec& spec, const StageMotion& m, const std::vector<const StageMotion*>& pieces,
+                      const RunOptions& opt, RunResult& res) {
+  Report& rep = res.report;
+  double fit_err = 0;
+  const TopoDS_Shape raw = entity_shape(spec.entity, 1e-9, &fit_err);
+  const double size = stage_model_size(raw, m);
+  rep.tol_requested = spec.tolerance > 0 ? spec.tolerance : 1e-6 * size;
+  const double tol = rep.tol_requested;
+  const Eigen::Vector3d c0 = spec.entity.placement * spec.entity.center;
+  const auto t_build = Clock::now();
+  std::vector<TopoDS_Shape> tubes;
+  for (std::size_t k = 0; k < pieces.size(); ++k) {
+    if (opt.progress) opt.progress("the tube about the ball's path, piece " + std::to_string(k + 1));
+    std::string why;
+    tubes.push_back(ball_path_sweep(c0, spec.entity.radius, *pieces[k], 0.01 * tol, size, &fit_err, nullptr, &why));
+    if (tubes.back().IsNull())
+      throw ComputeError("a ball under this motion" +
+                         (pieces.size() > 1 ? " (segment " + std::to_string(k + 1) + ")" : std::string()) + ": " + why);
+  }
+  const TopoDS_Shape solid = fused(tubes, size);
+  rep.seconds["stages"] = since(t_build);
+  rep.varieties = 3 * int(pieces.size());
+  rep.cells = int(pieces.size());
+  const std::shared_ptr<const SignedDistance> sd(make_signed_distance(spec.entity));
+  const StageMotion* motion = &m;
+  const double resolution = 1e-9 * size;
+  const std::size_t budget = opt.settings.membership_budget;
+  const bool certified = std::isfinite(m.speed_bound(1.0));
+  const IndependentMembership member{
+      [sd, motion, resolution, budget]() -> MemberTest {
+        auto set = std::make_shared<StageSweptSet>(*sd, *motion, resolution, budget);
+        return [set](const Eigen::Vector3d& x) { return (*set)(x); };
+      },
+      std::string("search over t (signed distance, ") + (certified ? "certified" : "sampled") + " speed bound)"};
+  FinalChecks check(rep, member, stage_swept_box(box_of(raw), m), tol, size, fit_err, opt.settings, "");
+  finish_solid(solid, check, member.test, size, tol, opt, res);
+}
+
+}  // namespace
+
+RunResult run_stage_motion_sweep(const Spec& spec, const RunOptions& opt) {
+  const auto t_start = Clock::now();
+  RunResult res;
+  Report& rep = res.report;
+  rep.dimension = spec.entity.dimension();
+  install_signal_handlers();
+  const StopScope stop_scope(opt.stop);
+  const StageMotion& m = *spec.motion.stage;
+  try {
+    OCC_CATCH_SIGNALS
+    const auto* km = dynamic_cast<const KeyframeMotion*>(&m);
+    if (km && km->interpolation() == KeyframeMotion::Interpolation::Screw) {
+      keyframe_screw_sweep(spec, *km, opt, res);
+    } else if (spec.entity.kind == EntityKind::Sphere) {
+      // linear keyframes turn at the poses: one smooth piece per segment
+      std::vector<std::unique_ptr<KeyframeMotion>> segments;
+      std::vector<const StageMotion*> pieces{&m};
+      if (km) {
+        pieces.clear();
+        for (std::size_t k = 0; k + 1 < km->times().size(); ++k) {
+          segments.push_back(std::make_unique<KeyframeMotion>(
+              std::vector<double>{km->times()[k], km->times()[k + 1]},
+              std::vector<Eigen::Isometry3d>{km->poses()[k], km->poses()[k + 1]}, km->interpolation()));
+          pieces.push_back(segments.back().get());
+        }
+      }
+      ball_stage_sweep(spec, m, pieces, opt, res);
+    } else {
+      throw ComputeError(std::string("a ") + to_string(spec.entity.kind) + " entity under a " +
+                         to_string(spec.motion.kind) +
+                         " motion that is not a sequence of screws is not supported yet (balls are; keyframes with "
+                         "screw interpolation take every entity)");
+    }
+  } catch (const InputError&) {
+    throw;
+  } catch (const Standard_Failure& f) {
+    rep.status = "failed";
+    rep.message = std::string("OCCT: ") + (f.GetMessageString() ? f.GetMessageString() : "failure");
+  } catch (const ComputeError& e) {
+    rep.status = "failed";
+    rep.message = e.what();
+  }
+  rep.seconds_total = since(t_start);
+  return res;
+}
+
+}  // namespace sweep::occt
