@@ -181,3 +181,29 @@ TEST_CASE("Stage motions: what is not built yet or cannot be fails with its reas
   CHECK(tight.status == "failed");
   CHECK(tight.message.find("bends tighter") != std::string::npos);
 }
+
+TEST_CASE("Stage motions: a point sweeps its path and a curve a surface") {
+  // a point on a helix of radius 5 rising 6 over two turns: its length
+  const sweep::Spec point = sweep::parse_spec(R"({"sweep": 1, "entity": {"kind": "point", "at": [5, 0, 0]},
+      "motion": {"kind": "path", "t": [0, 1], "translate": ["0", "0", "6*t"],
+                 "rotate": {"axis": [0, 0, 1], "angle": "4*pi*t"}}})", ".");
+  const auto p = sweep::occt::run_sweep(point);
+  CAPTURE(p.report.to_json().dump());
+  REQUIRE(p.report.ok());
+  CHECK(p.report.dimension == 1);
+  GProp_GProps g;
+  BRepGProp::LinearProperties(p.shape->shape, g);
+  CHECK(g.Mass() == Approx(2 * std::sqrt(100 * M_PI * M_PI + 9)).epsilon(1e-9));
+  // a segment from radius 1 to 3 screwed 1.5 rad while rising 5: a strip of a helicoid
+  const sweep::Spec curve = sweep::parse_spec(R"({"sweep": 1,
+      "entity": {"kind": "curve", "params": {"s": [0, 1]}, "xyz": ["1+2*s", "0", "0"]},
+      "motion": {"kind": "path", "t": [0, 1], "translate": ["0", "0", "5*t"], "rotate": {"axis": [0, 0, 1], "angle": "1.5*t"}}})",
+                                              ".");
+  const auto c = sweep::occt::run_sweep(curve);
+  CAPTURE(c.report.to_json().dump());
+  REQUIRE(c.report.ok());
+  CHECK(c.report.dimension == 2);
+  const double h = 5 / 1.5;
+  const auto F = [h](double r) { return 0.5 * (r * std::sqrt(r * r + h * h) + h * h * std::log(r + std::sqrt(r * r + h * h))); };
+  CHECK(c.report.area == Approx(1.5 * (F(3) - F(1))).epsilon(1e-8));
+}

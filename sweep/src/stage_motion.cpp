@@ -242,9 +242,8 @@ double KeyframeMotion::speed_bound(double radius) const {
   return bound;
 }
 
-std::vector<KeyframeMotion::ScrewSegment> KeyframeMotion::screw_segments() const {
+std::optional<std::vector<KeyframeMotion::ScrewSegment>> KeyframeMotion::screw_segments() const {
   std::vector<ScrewSegment> out;
-  if (interpolation_ != Interpolation::Screw) return out;
   for (std::size_t k = 0; k < segments_.size(); ++k) {
     const Segment& s = segments_[k];
     const double dt = times_[k + 1] - times_[k];
@@ -253,11 +252,19 @@ std::vector<KeyframeMotion::ScrewSegment> KeyframeMotion::screw_segments() const
     seg.t0 = times_[k];
     seg.t1 = times_[k + 1];
     if (s.rate > 0) {
-      seg.joint.type = s.pitch == 0 ? JointType::Revolute : JointType::Helical;
-      seg.joint.point = s.c;
       seg.joint.direction = s.w;
-      seg.joint.pitch = s.pitch;
       seg.joint.hi = s.rate * dt;
+      if (interpolation_ == Interpolation::Screw) {
+        seg.joint.point = s.c;
+        seg.joint.pitch = s.pitch;
+      } else {
+        // turning about the pose origin while it slides: a screw only when it slides along the axis
+        const double slide = s.slide.norm();
+        if (s.slide.cross(s.w).norm() > 1e-12 * std::max(1.0, slide)) return std::nullopt;
+        seg.joint.point = poses_[k].translation();
+        seg.joint.pitch = s.slide.dot(s.w) / s.rate;
+      }
+      seg.joint.type = seg.joint.pitch == 0 ? JointType::Revolute : JointType::Helical;
     } else {
       const double length = s.slide.norm() * dt;
       if (!(length > 0)) continue;  // the pose stays: nothing new is swept

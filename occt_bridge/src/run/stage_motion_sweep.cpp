@@ -1,11 +1,18 @@
 // Sweeps under one-parameter motions that are not chains of screws (SPEC.md `path`, `keyframes`).
-// Keyframes with screw interpolation are a sequence of screw segments: each segment is the
-// one-joint sweep of the entity at its start pose (the engine of run_sweep), and the set is their
-// union, judged by the union of the segments' own independent memberships. Under a general motion
+// Keyframes with screw interpolation, and linear ones whose segments only slide or turn, are a
+// sequence of screw segments: each segment is the one-joint sweep of the entity at its start pose
+// (the engine of run_sweep), and the set is their union, judged by the union of the segments' own
+// independent memberships. Under a general motion
 // a ball sweeps the tube about its centre's path (varieties/ball_path.cpp), judged by a branch and
-// bound over t (sweep/stage_membership.hpp); other entities under general motions are not built
-// yet and fail with that reason.
+// bound over t (sweep/stage_membership.hpp); a point sweeps its fitted path and a curve a fitted
+// surface; other entities under general motions are not built yet and fail with that reason.
 #include <BRepAlgoAPI_Fuse.hxx>
+#include <BRepBuilderAPI_MakeEdge.hxx>
+#include <BRepBuilderAPI_MakeFace.hxx>
+#include <Geom_BSplineCurve.hxx>
+#include <TColStd_Array1OfInteger.hxx>
+#include <TColStd_Array1OfReal.hxx>
+#include <TColgp_Array1OfPnt.hxx>
 #include <BRepBndLib.hxx>
 #include <BRep_Builder.hxx>
 #include <Standard_ErrorHandler.hxx>
@@ -25,6 +32,7 @@
 #include "sweep/stage_membership.hpp"
 #include "sweep/swept_box.hpp"
 #include "varieties/ball_path.hpp"
+#include "varieties/tube_fit.hpp"
 #include "verdict/solid_checks.hpp"
 
 namespace sweep::occt {
@@ -126,10 +134,10 @@ TopoDS_Shape fused(const std::vector<TopoDS_Shape>& parts, double size) {
   return s;
 }
 
-/// Keyframes with screw interpolation: the union of the segments' screw sweeps.
-void keyframe_screw_sweep(const Spec& spec, const KeyframeMotion& km, const RunOptions& opt, RunResult& res) {
+/// Keyframes whose segments are screw motions: the union of the segments' screw sweeps.
+void keyframe_screw_sweep(const Spec& spec, const KeyframeMotion& km, const std::vector<KeyframeMotion::ScrewSegment>& segments,
+                          const RunOptions& opt, RunResult& res) {
   Report& rep = res.report;
-  const auto segments = km.screw_segments();
   if (segments.empty()) throw ComputeError("the poses never move the entity: nothing is swept");
   double fit_err = 0;
   const TopoDS_Shape raw = entity_shape(spec.entity, 1e-9, &fit_err);
@@ -230,6 +238,64 @@ void ball_stage_sweep(const Spec& spec, const StageMotion& m, const std::vector<
   finish_solid(solid, check, member.test, size, tol, opt, res);
 }
 
+/// A point (its trajectory, a curve) or a curve (a surface) under a general motion, one fitted
+/// B-spline per smooth piece of the motion.
+void low_dimension_stage_sweep(const Spec& spec, const StageMotion& m, const std::vector<const StageMotion*>& pieces,
+                               const RunOptions& opt, RunResult& res) {
+  Report& rep = res.report;
+  const int dim = spec.entity.dimension();
+  const std::unique_ptr<ParametricEntity> pe = ParametricEntity::make(spec.entity);
+  if (!pe) throw InternalError("no parametric map for a point or curve entity");
+  double fit_err = 0;
+  const TopoDS_Shape raw = dim == 0 ? entity_shape(spec.entity, 1e-9, &fit_err) : sampled_points(spec.entity);
+  const double size = stage_model_size(raw, m);
+  rep.tol_requested = spec.tolerance > 0 ? spec.tolerance : 1e-6 * size;
+  const double fit_tol = 0.01 * rep.tol_requested;
+  const auto t_build = Clock::now();
+  TopoDS_Compound comp;
+  BRep_Builder bb;
+  bb.MakeCompound(comp);
+  for (const StageMotion* piece : pieces) {
+    check_stop();
+    const double lo = piece->lo(), L = piece->hi() - lo;
+    if (dim == 0) {
+      const double at[1] = {0};
+      const Eigen::Vector3d x0 = pe->eval(at);
+      const auto row = [&](double u) {
+        return Eigen::RowVectorXd((piece->transform(std::min(lo + u, piece->hi())) * x0).transpose());
+      };
+      const int p = 9;
+      Fit fit;
+      for (int spans = 2; spans <= 4096; spans *= 2) {
+        fit = fit_bspline(row, 3, L, p, spans, 1);
+        if (fit.error <= fit_tol) break;
+      }
+      if (!(fit.error <= fit_tol)) throw ComputeError("the point's path could not be fitted within the tolerance");
+      fit_err = std::max(fit_err, fit.error);
+      TColgp_Array1OfPnt poles(1, int(fit.poles.rows()));
+      for (int i = 0; i < int(fit.poles.rows()); ++i) poles.SetValue(i + 1, gp_Pnt(fit.poles(i, 0), fit.poles(i, 1), fit.poles(i, 2)));
+      TColStd_Array1OfReal knots(1, int(fit.knots.size()));
+      TColStd_Array1OfInteger mults(1, int(fit.knots.size()));
+      knots_of(fit, knots, mults);
+      bb.Add(comp, BRepBuilderAPI_MakeEdge(new Geom_BSplineCurve(poles, knots, mults, p)).Edge());
+    } else {
+      const double s0 = pe->lo(0), s1 = pe->hi(0);
+      const auto exact = [&](double fu, double fv) {
+        const double s[1] = {s0 + (s1 - s0) * fv};
+        return to_pnt(piece->transform(std::min(lo + L * fu, piece->hi())) * pe->eval(s));
+      };
+      double err = 0;
+      const Handle(Geom_BSplineSurface) srf = fit_grid_surface(exact, fit_tol, 0.1 * fit_tol, 16, 256, &err);
+      if (srf.IsNull()) throw ComputeError("the surface swept by the curve could not be fitted within the tolerance");
+      fit_err = std::max(fit_err, err);
+      bb.Add(comp, BRepBuilderAPI_MakeFace(srf, 1e-9 * size).Face());
+    }
+  }
+  rep.seconds["stages"] = since(t_build);
+  rep.dimension = dim + 1;
+  res.shape = std::make_shared<Shape>(finish_curve_or_surface(comp, dim + 1, size, fit_err, opt.verify, rep));
+}
+
 }  // namespace
 
 RunResult run_stage_motion_sweep(const Spec& spec, const RunOptions& opt) {
@@ -243,10 +309,11 @@ RunResult run_stage_motion_sweep(const Spec& spec, const RunOptions& opt) {
   try {
     OCC_CATCH_SIGNALS
     const auto* km = dynamic_cast<const KeyframeMotion*>(&m);
-    if (km && km->interpolation() == KeyframeMotion::Interpolation::Screw) {
-      keyframe_screw_sweep(spec, *km, opt, res);
-    } else if (spec.entity.kind == EntityKind::Sphere) {
-      // linear keyframes turn at the poses: one smooth piece per segment
+    const auto segments = km ? km->screw_segments() : std::nullopt;
+    if (segments) {
+      keyframe_screw_sweep(spec, *km, *segments, opt, res);
+    } else if (spec.entity.kind == EntityKind::Sphere || spec.entity.dimension() <= 1) {
+      // linear keyframes that are not screws turn at the poses: one smooth piece per segment
       std::vector<std::unique_ptr<KeyframeMotion>> segments;
       std::vector<const StageMotion*> pieces{&m};
       if (km) {
@@ -258,12 +325,16 @@ RunResult run_stage_motion_sweep(const Spec& spec, const RunOptions& opt) {
           pieces.push_back(segments.back().get());
         }
       }
-      ball_stage_sweep(spec, m, pieces, opt, res);
+      if (spec.entity.dimension() <= 1) {
+        low_dimension_stage_sweep(spec, m, pieces, opt, res);
+      } else {
+        ball_stage_sweep(spec, m, pieces, opt, res);
+      }
     } else {
       throw ComputeError(std::string("a ") + to_string(spec.entity.kind) + " entity under a " +
                          to_string(spec.motion.kind) +
-                         " motion that is not a sequence of screws is not supported yet (balls are; keyframes with "
-                         "screw interpolation take every entity)");
+                         " motion that is not a sequence of screws is not supported yet (points, curves and balls are; "
+                         "keyframes whose segments are screws take every entity)");
     }
   } catch (const InputError&) {
     throw;

@@ -7,6 +7,7 @@
 /// poses are others.
 #include <Eigen/Geometry>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -111,8 +112,10 @@ class KeyframeMotion : public StageMotion {
     Eigen::Isometry3d start = Eigen::Isometry3d::Identity();
     double t0 = 0, t1 = 0;
   };
-  /// The segments of screw interpolation (empty for linear), those that keep the pose left out.
-  std::vector<ScrewSegment> screw_segments() const;
+  /// The segments as screw motions, those that keep the pose left out: every segment of screw
+  /// interpolation; linear segments when each only slides, only turns, or turns about an axis it
+  /// slides along (else none).
+  std::optional<std::vector<ScrewSegment>> screw_segments() const;
 
  private:
   /// Segment k: from pose k, the rotation angle rate `rate` (radians per unit t) about unit axis
