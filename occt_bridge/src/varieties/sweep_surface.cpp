@@ -60,6 +60,18 @@ bool slides_along(const Handle(Geom_Curve)& c, double f, double l, const ScrewJo
   return true;
 }
 
+/// True when the curve lies within tol of a rotation joint's axis (sampled): its sweep is a tube of
+/// radius at most tol, with no area to bound the swept set (and a thin tube stalls OCCT's
+/// intersectors).
+bool on_axis(const Handle(Geom_Curve)& c, double f, double l, const ScrewJoint& j, double tol) {
+  if (!j.is_rotation()) return false;
+  for (int k = 0; k <= 32; ++k) {
+    const Eigen::Vector3d r = to_eigen(c->Value(f + (l - f) * k / 32.0)) - j.point;
+    if ((r - j.direction * j.direction.dot(r)).norm() > tol) return false;
+  }
+  return true;
+}
+
 /// Best-fit check: all samples of c within tol of the candidate.
 bool matches(const Handle(Geom_Curve)& c, double f, double l, const Handle(Geom_Curve)& cand, double tol) {
   for (int k = 0; k <= 64; ++k) {
@@ -467,7 +479,7 @@ std::vector<double> axis_crossings(const Handle(Geom_Curve)& c, double first, do
 std::vector<TopoDS_Face> sweep_curve(const Handle(Geom_Curve)& c, double first, double last,
                                      const ScrewJoint& j, double T, double tol, double* fit_error) {
   std::vector<TopoDS_Face> out;
-  if (slides_along(c, first, last, j)) return out;
+  if (slides_along(c, first, last, j) || on_axis(c, first, last, j, tol)) return out;
   if (c->IsKind(STANDARD_TYPE(Geom_Line)) && j.type == JointType::Revolute) {
     gp_Pnt a = c->Value(first), b = c->Value(last);
     gp_Vec d(a, b);
