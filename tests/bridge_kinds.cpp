@@ -1,13 +1,17 @@
 // One sweep per entity kind, each against a closed form.
 #include <BRepAdaptor_Surface.hxx>
+#include <BRepGProp.hxx>
+#include <GProp_GProps.hxx>
 #include <BRepTools.hxx>
 #include <BRep_Builder.hxx>
 #include <TopExp_Explorer.hxx>
 #include <TopoDS.hxx>
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <cmath>
 #include <map>
 
+#include "base/internal.hpp"
 #include "occt_bridge/sweeper.hpp"
 #include "sweep/spec.hpp"
 
@@ -219,4 +223,53 @@ TEST_CASE("One joint: a grazing edge and a grazing curve on the axis neither sta
     CHECK(std::abs(r.report.volume_brep - r.report.volume_mc) < 4.5 * r.report.volume_mc_stderr);
     CHECK(r.report.volume_divergence == Approx(r.report.volume_brep).epsilon(1e-6));
   }
+}
+
+TEST_CASE("Elliptic cylinders: the entity, and swept by a prismatic and a revolute joint against closed forms") {
+  // the twisted entity keeps its sections' area: volume pi a b h
+  {
+    const sweep::Spec s = sweep::parse_spec(R"({"sweep": 1, "entity": {"kind": "elliptic_cylinder", "base": [0.5, 0, 0],
+        "axis": [0, 1, 1], "a": 1.0, "b": 0.4, "height": 3, "twist": "1.5*u"},
+        "motion": {"kind": "screw", "point": [0, 0, 0], "direction": [0, 0, 1], "pitch": 0, "range": [0, 1]}})", ".");
+    double err = 0;
+    const TopoDS_Shape body = sweep::occt::entity_shape(s.entity, 1e-7, &err);
+    GProp_GProps g;
+    BRepGProp::VolumeProperties(body, g);
+    CHECK(std::abs(g.Mass()) == Approx(M_PI * 1.0 * 0.4 * 3).epsilon(1e-6));
+    CHECK(err < 1e-6);
+  }
+  const std::string entity = R"({"kind": "elliptic_cylinder", "base": [0, 0, 0], "axis": [0, 0, 1], "a": 1.5, "b": 0.7, "height": 2})";
+  // translated 3 along its a axis: the ellipse plus a 3 x 2b rectangle, times the height
+  const auto slide = sweep::occt::run_sweep(sweep::parse_spec(R"({"sweep": 1, "entity": )" + entity + R"(,
+      "motion": {"kind": "axes", "joints": [{"type": "prismatic", "direction": [1, 0, 0], "range": [0, 3]}]}})", "."));
+  CAPTURE(slide.report.to_json().dump());
+  CHECK(slide.report.ok());
+  CHECK(slide.report.volume_brep == Approx((M_PI * 1.5 * 0.7 + 3 * 1.4) * 2).epsilon(1e-9));
+  // turned 1.2 rad about its own axis: at radius rho in [b, a] the section covers two arcs of half
+  // angle alpha(rho) (sin^2 alpha = (1/rho^2 - 1/a^2) / (1/b^2 - 1/a^2)), each lengthened by the turn
+  const auto turn = sweep::occt::run_sweep(sweep::parse_spec(R"({"sweep": 1, "entity": )" + entity + R"(,
+      "motion": {"kind": "axes", "joints": [{"type": "revolute", "point": [0, 0, 0], "direction": [0, 0, 1], "range": [0, 1.2]}]}})", "."));
+  CAPTURE(turn.report.to_json().dump());
+  CHECK(turn.report.ok());
+  const double a = 1.5, b = 0.7, th = 1.2;
+  // Gauss-Legendre on [b, a] in the variable s = sqrt(a - rho) (smooth where the arcs vanish), split where the arcs meet
+  const auto covered = [&](double rho) {
+    const double s2 = std::clamp((1 / (rho * rho) - 1 / (a * a)) / (1 / (b * b) - 1 / (a * a)), 0.0, 1.0);
+    return std::min(2 * M_PI, 2 * (2 * std::asin(std::sqrt(s2)) + th));
+  };
+  // the arcs meet where 2 alpha + th = pi
+  const double s2m = std::pow(std::sin(0.5 * (M_PI - th)), 2);
+  const double rho_m = 1 / std::sqrt(s2m * (1 / (b * b) - 1 / (a * a)) + 1 / (a * a));
+  const double x[5] = {-0.9061798459386640, -0.5384693101056831, 0.0, 0.5384693101056831, 0.9061798459386640};
+  const double w[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889, 0.4786286704993665,
+                       0.2369268850561891};
+  double area = M_PI * rho_m * rho_m;  // every angle covered below rho_m
+  const int n = 400;
+  const double smax = std::sqrt(a - rho_m);
+  for (int k = 0; k < n; ++k)
+    for (int i = 0; i < 5; ++i) {
+      const double s = smax * (k + 0.5 + 0.5 * x[i]) / n, rho = a - s * s;
+      area += w[i] * 0.5 * smax / n * rho * covered(rho) * 2 * s;
+    }
+  CHECK(turn.report.volume_brep == Approx(area * 2).epsilon(1e-9));
 }

@@ -79,6 +79,22 @@ std::unique_ptr<SignedDistance> make_signed_distance(const EntitySpec& e) {
         return std::hypot(std::max(dr, 0.0), std::max(dz, 0.0)) + std::min(std::max(dr, dz), 0.0);
       });
     }
+    case EntityKind::EllipticCylinder: {
+      // untwisted: the slab and min(a, b) (|(x/a, y/b)| - 1), whose gradient is at most 1 in norm;
+      // the maximum of the two is 1-Lipschitz with the right sign (a twisted one has none here)
+      if (e.twist && !e.twist->is_constant()) return nullptr;
+      const Eigen::Matrix3d F = e.elliptic_frame();
+      const double phi = e.twist_at(0.0);
+      const Vector3d X = std::cos(phi) * F.col(0) + std::sin(phi) * F.col(1), Y = F.col(2).cross(X), Z = F.col(2);
+      const Vector3d b = e.base;
+      const double A = e.a, B = e.b, h = e.height;
+      return std::make_unique<Placed>(e.placement, [X, Y, Z, b, A, B, h](const Vector3d& p) {
+        const Vector3d l = p - b;
+        const double slab = std::abs(l.dot(Z) - 0.5 * h) - 0.5 * h;
+        const double side = std::min(A, B) * (std::hypot(l.dot(X) / A, l.dot(Y) / B) - 1.0);
+        return std::max(slab, side);
+      });
+    }
     case EntityKind::Cone: {
       // Intersection of the slab 0<=z<=h and the infinite cone through the two rims: the maximum
       // of the two signed distances is 1-Lipschitz with the right sign.

@@ -1133,6 +1133,16 @@ const char* to_string(MotionKind k) {
   return "?";
 }
 
+Eigen::Matrix3d EntitySpec::elliptic_frame() const {
+  const Eigen::Vector3d z = axis.normalized();
+  Eigen::Vector3d x = Eigen::Vector3d::UnitX() - z * z.x();
+  if (x.norm() < 1e-6) x = Eigen::Vector3d::UnitY() - z * z.y();
+  x.normalize();
+  Eigen::Matrix3d F;
+  F << x, z.cross(x), z;
+  return F;
+}
+
 int EntitySpec::dimension() const {
   switch (kind) {
     case EntityKind::Point: return 0;

@@ -37,6 +37,7 @@
 #include <fstream>
 
 #include "base/internal.hpp"
+#include "entity/elliptic_cylinder.hpp"
 #include "sweep/error.hpp"
 
 namespace sweep::occt {
@@ -316,6 +317,9 @@ TopoDS_Shape entity_shape(const EntitySpec& e, double tol, double* fit_error) {
       break;
     case EntityKind::Torus:
       s = BRepPrimAPI_MakeTorus(axis_frame(e.center, e.axis), e.major, e.minor).Shape();
+      break;
+    case EntityKind::EllipticCylinder:
+      s = elliptic_cylinder_shape(e, tol, fit_error);
       break;
     case EntityKind::Curve: {
       auto c = fit_curve(e, tol, fit_error);

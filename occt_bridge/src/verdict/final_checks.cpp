@@ -26,7 +26,7 @@ IndependentMembership independent_membership(const EntitySpec& entity, const Mot
     return {always_decided(orbit_membership(orbit_placed(orbit_entity, j.transform(j.lo) * clipped.home), j, j.hi - j.lo)),
             "orbit intervals of the entity"};
   }
-  if (n == 1 && entity.dimension() == 3) {
+  if (n == 1 && entity.dimension() == 3 && !sd) {
     const ScrewJoint j = clipped.joints[0];
     const TopoDS_Shape body = moved(moved(raw, clipped.home), j.transform(j.lo));
     return {always_decided(trajectory_membership(body, j, j.hi - j.lo, 1e-9 * size)),

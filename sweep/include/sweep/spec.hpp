@@ -50,6 +50,11 @@ struct EntitySpec {
 
   /// Dimension of the entity: 0 point, 1 curve, 2 surface, 3 solid (brep may be 2 for a shell).
   int dimension() const;
+  /// elliptic_cylinder: the frame of its sections, columns X (the `a` semi-axis where the twist is
+  /// 0: world x projected normal to the axis, world y when the axis is along x), Y = Z x X, Z the axis.
+  Eigen::Matrix3d elliptic_frame() const;
+  /// elliptic_cylinder: the angle of the `a` semi-axis from X at height fraction u (0 untwisted).
+  double twist_at(double u) const { return twist ? twist->eval(&u) : 0.0; }
 };
 
 enum class MotionKind { Dh, Axes, Screw, Path, Keyframes, Toolpath, PolyScrew };
