@@ -100,6 +100,10 @@ bool valid_and_closed(const TopoDS_Shape& s);
 TopoDS_Shape direct_ball_screw(const TopoDS_Shape& body, const ScrewJoint& j, double T, double fit_tol, double size,
                                double tol, double* fit_err, std::vector<TopoDS_Face>* faces, std::vector<int>* roles);
 
+/// A ball under a screw built directly (direct_ball_screw), its tube and end varieties in `cand`;
+/// null when the stage is not one or the build does not pass (`cand` unchanged).
+TopoDS_Shape ball_screw_stage(const StageInput& in, double& fit_err, Candidates& cand);
+
 /// The stage built without an arrangement (a ball under a screw, a face translated along a
 /// direction in which it is a graph) when such a build exists and is valid and closed; its faces
 /// and varieties go to `cand`. Null otherwise (`cand` unchanged).

@@ -136,22 +136,9 @@ TopoDS_Shape entity_stage(const StageInput& in, const EntitySpec& entity, const 
                           const std::function<void(const std::string&)>& step) {
   const ScrewJoint& j = in.j;
   const double T = in.T;
-  std::vector<TopoDS_Face> direct_faces;
-  std::vector<int> roles;
-  double err = fit_err;
-  const TopoDS_Shape direct =
-      opt.direct_builds ? direct_ball_screw(in.body, j, T, in.fit_tol, in.size, in.tol, &err, &direct_faces, &roles)
-                        : TopoDS_Shape();
+  const TopoDS_Shape direct = opt.direct_builds ? ball_screw_stage(in, fit_err, stage_cands) : TopoDS_Shape();
   if (!direct.IsNull()) {
-    fit_err = err;
-    const int tube = stage_cands.add_variety(
-        {in.stage, in.joint_no, "interior", "grazing curve (n . v = 0) swept by joint " + std::to_string(in.joint_no) +
-                                                " (a tube about the centre's helix)"});
-    const int lo_id = stage_cands.add_variety({in.stage, in.joint_no, "limit", "the entity at the start of the range"});
-    const int hi_id = stage_cands.add_variety({in.stage, in.joint_no, "limit", "the entity at the end of the range"});
-    for (std::size_t k = 0; k < direct_faces.size(); ++k)
-      stage_cands.add(roles[k] == 0 ? tube : roles[k] == 1 ? lo_id : hi_id, {direct_faces[k]}, true);
-    rep.varieties += 3;
+    rep.varieties += int(stage_cands.vars.size());
     rep.cells += 1;
     return direct;
   }

@@ -323,6 +323,26 @@ LimitIds stage_candidates(const StageInput& in, double& fit_err, Candidates& can
   return ids;
 }
 
+TopoDS_Shape ball_screw_stage(const StageInput& in, double& fit_err, Candidates& cand) {
+  const ScrewJoint& j = in.j;
+  if (in.dim != 3 || j.type != JointType::Helical || j.pitch == 0) return {};
+  double err = fit_err;
+  std::vector<TopoDS_Face> fs;
+  std::vector<int> roles;
+  const TopoDS_Shape direct = direct_ball_screw(in.body, j, in.T, in.fit_tol, in.size, in.tol, &err, &fs, &roles);
+  if (direct.IsNull()) return {};
+  fit_err = err;
+  cand.varieties += 3;
+  const std::string qn = "q" + std::to_string(in.joint_no);
+  const int tube = cand.add_variety({in.stage, in.joint_no, "interior",
+                                     "grazing curve (n . v = 0) on entity face 1 swept by joint " +
+                                         std::to_string(in.joint_no) + " (a tube about the centre's helix)",
+                                     nlohmann::json::object(), nlohmann::json{{qn, {0.0, in.T}}}});
+  const int lo_id = add_limit_variety(in, false, cand), hi_id = add_limit_variety(in, true, cand);
+  for (std::size_t k = 0; k < fs.size(); ++k) cand.add(roles[k] == 0 ? tube : roles[k] == 1 ? lo_id : hi_id, {fs[k]}, true);
+  return direct;
+}
+
 TopoDS_Shape direct_stage(const StageInput& in, double& fit_err, Candidates& cand) {
   const ScrewJoint& j = in.j;
   const double T = in.T;
@@ -334,24 +354,7 @@ TopoDS_Shape direct_stage(const StageInput& in, double& fit_err, Candidates& can
   auto limit_variety = [&](bool end) { return add_limit_variety(in, end, cand); };
   // A ball whose centre's helix has a reach above its radius sweeps a tube closed by two half
   // balls.
-  if (in.dim == 3 && j.type == JointType::Helical && j.pitch != 0) {
-    double err = fit_err;
-    std::vector<TopoDS_Face> fs;
-    std::vector<int> roles;
-    const TopoDS_Shape direct = direct_ball_screw(in.body, j, T, in.fit_tol, in.size, in.tol, &err, &fs, &roles);
-    if (!direct.IsNull()) {
-      fit_err = err;
-      cand.varieties += 2;
-      const int tube = variety("interior", "grazing curve (n . v = 0) on entity face 1 swept by joint " +
-                                               std::to_string(in.joint_no) + " (a tube about the centre's helix)",
-                               nlohmann::json::object(), qfree);
-      const int lo_id = limit_variety(false), hi_id = limit_variety(true);
-      cand.varieties += 1;
-      for (std::size_t k = 0; k < fs.size(); ++k)
-        cand.add(roles[k] == 0 ? tube : roles[k] == 1 ? lo_id : hi_id, {fs[k]}, true);
-      return direct;
-    }
-  }
+  if (const TopoDS_Shape direct = ball_screw_stage(in, fit_err, cand); !direct.IsNull()) return direct;
   // A face translated along a direction in which it is a graph: the face, its translate and the
   // sweep of its boundary, sewn.
   if (in.dim == 2 && j.type == JointType::Prismatic) {
