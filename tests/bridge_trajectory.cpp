@@ -1,7 +1,12 @@
 // Membership by trajectories: circles met by tori in closed form, rays deciding inside, and the
 // whole test against a membership computed from a torus's exact distance.
 #include <BRepClass3d_SolidClassifier.hxx>
+#include <BRepBuilderAPI_MakeEdge.hxx>
+#include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepBuilderAPI_MakeWire.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
+#include <BRepPrimAPI_MakePrism.hxx>
+#include <gp_Elips.hxx>
 #include <BRepPrimAPI_MakeTorus.hxx>
 #include <BRepAlgoAPI_Fuse.hxx>
 #include <ElCLib.hxx>
@@ -132,4 +137,26 @@ TEST_CASE("Trajectory membership: rays agree with OCCT's classifier, and the swe
   CHECK(decided > 290);
   CHECK(compared > 250);
   CHECK(inside > 30);
+}
+
+TEST_CASE("Trajectory membership: points just off an extruded ellipse, where a ray grazes the side") {
+  // the elliptic side x^2 / 1.5^2 + y^2 / 0.7^2 = 1, z in [0, 2]; the first ray direction from these
+  // points meets the side at under a degree, where OCCT's intersector found one crossing of two
+  const gp_Elips el(gp_Ax2(gp_Pnt(0, 0, 0), gp::DZ(), gp::DX()), 1.5, 0.7);
+  const TopoDS_Face base = BRepBuilderAPI_MakeFace(BRepBuilderAPI_MakeWire(BRepBuilderAPI_MakeEdge(el).Edge()).Wire()).Face();
+  const TopoDS_Shape body = BRepPrimAPI_MakePrism(base, gp_Vec(0, 0, 2)).Shape();
+  sweep::ScrewJoint j;
+  j.type = sweep::JointType::Prismatic;
+  j.direction = Eigen::Vector3d::UnitX();
+  j.hi = 3;
+  sweep::occt::TrajectoryMembership member(body, true, j, 3.0, 6e-9);
+  const Eigen::Vector3d p(-1.31276168, 0.338665238, 0.444533241);
+  const Eigen::Vector3d n = Eigen::Vector3d(p.x() / 2.25, p.y() / 0.49, 0).normalized();
+  for (const double off : {2.4e-5, 1e-4, 1e-3}) {
+    CAPTURE(off);
+    CHECK(member.ray_inside(p + off * n) == 0);
+    CHECK_FALSE(member(p + off * n));  // its path back runs away from the body
+    CHECK(member.ray_inside(p - off * n) == 1);
+    CHECK(member(p - off * n));
+  }
 }

@@ -127,6 +127,9 @@ struct TrajectoryMembership::Impl {
   Impl(const TopoDS_Shape& body, bool solid, const ScrewJoint& j, double T, double tol)
       : solid_(solid), j_(j), T_(T), tol_(tol) {
     if (solid_) cls_.Load(body);
+    Bnd_Box whole;
+    BRepBndLib::Add(body, whole);
+    back_ = whole.IsVoid() ? 1.0 : 0.01 * std::sqrt(whole.SquareExtent());
     // One intersector per face, the analytic ones (intersected in closed form) first.
     std::vector<std::pair<int, TopoDS_Face>> faces;
     for (TopExp_Explorer ex(body, TopAbs_FACE); ex.More(); ex.Next()) {
@@ -144,6 +147,7 @@ struct TrajectoryMembership::Impl {
       // points met are classified on the face itself, not within its edges' tolerances (which
       // would take points off the face for points on it)
       h.inter = std::make_unique<IntCurvesFace_Intersector>(f.second, tol, true, false);
+      h.surface = std::make_unique<BRepAdaptor_Surface>(f.second);
       const BRepAdaptor_Surface S(f.second);
       if (S.GetType() == GeomAbs_Torus) {
         h.torus = std::make_unique<gp_Torus>(S.Torus());
@@ -194,7 +198,15 @@ struct TrajectoryMembership::Impl {
         for (int k = 1; k <= h.inter->NbPnt(); ++k) {
           const double w = h.inter->WParameter(k);
           const IntCurveSurface_TransitionOnCurve tr = h.inter->Transition(k);
-          if (w < tol_ || tr == IntCurveSurface_Tangent || h.inter->State(k) != TopAbs_IN) {
+          // a ray that grazes the face (within about 3 degrees) crosses it twice close together,
+          // and OCCT's intersector can find one crossing of the two (a point 2e-5 outside an
+          // extruded ellipse was called inside): no clear answer along it
+          gp_Pnt at;
+          gp_Vec du, dv;
+          h.surface->D1(h.inter->UParameter(k), h.inter->VParameter(k), at, du, dv);
+          const gp_Vec normal = du.Crossed(dv);
+          const bool grazing = normal.Magnitude() > 0 && std::abs(normal.Dot(line.Direction())) < 0.05 * normal.Magnitude();
+          if (w < tol_ || tr == IntCurveSurface_Tangent || grazing || h.inter->State(k) != TopAbs_IN) {
             clear = false;
             break;
           }
@@ -268,11 +280,13 @@ struct TrajectoryMembership::Impl {
   bool solid_;
   ScrewJoint j_;
   double T_, tol_;
+  double back_ = 1.0;  ///< how far behind a point its rays start
   BRepClass3d_SolidClassifier cls_;
   /// A face's box and its intersector, which samples the face once for every curve it meets.
   struct FaceHit {
     Bnd_Box box;
     std::unique_ptr<IntCurvesFace_Intersector> inter;
+    std::unique_ptr<BRepAdaptor_Surface> surface;
     // a torus face met by circles is intersected in closed form
     std::unique_ptr<gp_Torus> torus;
     std::unique_ptr<BRepTopAdaptor_FClass2d> fc;
