@@ -279,16 +279,12 @@ std::vector<Candidate> cut_where_through_itself(const std::vector<Candidate>& ca
 
 /// The solid with the pieces of one analytic surface (the halves of a closed face, the pieces
 /// sections made) merged into one face each, when every face is analytic and the merged solid is
-/// valid; else the solid as it is. (Spline-bounded faces are left alone, and so are faces that
-/// reach a pole of their surface: merging them can stall, as it does for the pieces of a ball swept
-/// along the direction of its seam's plane.)
+/// valid; else the solid as it is. (Spline-bounded faces are left alone: merging them can stall.)
 TopoDS_Shape merged_analytic_faces(const TopoDS_Shape& solid) {
   for (TopExp_Explorer ex(solid, TopAbs_FACE); ex.More(); ex.Next()) {
     const GeomAbs_SurfaceType t = BRepAdaptor_Surface(TopoDS::Face(ex.Current())).GetType();
     if (t != GeomAbs_Plane && t != GeomAbs_Cylinder && t != GeomAbs_Cone && t != GeomAbs_Sphere && t != GeomAbs_Torus)
       return solid;
-    for (TopExp_Explorer e(ex.Current(), TopAbs_EDGE); e.More(); e.Next())
-      if (BRep_Tool::Degenerated(TopoDS::Edge(e.Current()))) return solid;
   }
   try {
     ShapeUpgrade_UnifySameDomain unify(BRepBuilderAPI_Copy(solid).Shape(), true, true, true);

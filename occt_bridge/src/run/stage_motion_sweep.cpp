@@ -309,7 +309,12 @@ RunResult run_stage_motion_sweep(const Spec& spec, const RunOptions& opt) {
   try {
     OCC_CATCH_SIGNALS
     const auto* km = dynamic_cast<const KeyframeMotion*>(&m);
-    const auto segments = km ? km->screw_segments() : std::nullopt;
+    auto segments = km ? km->screw_segments() : std::nullopt;
+    // a ball slid along a line is a tube about its centre's path too (and the one-joint engine
+    // stalls on a ball slid along the normal of its surface's seam plane)
+    if (segments && spec.entity.kind == EntityKind::Sphere)
+      for (const auto& seg : *segments)
+        if (seg.joint.type == JointType::Prismatic) segments.reset();
     if (segments) {
       keyframe_screw_sweep(spec, *km, *segments, opt, res);
     } else if (spec.entity.kind == EntityKind::Sphere || spec.entity.dimension() <= 1) {

@@ -65,16 +65,6 @@ struct Field {
     }
     return N.Dot(to_vec(joint.velocity(to_eigen(P)))) / n;
   }
-  /// g at p, or where it vanishes to rounding (below `noise`) its value a little inside the
-  /// domain: along a boundary edge on which all of g vanishes (an edge that is itself grazing, as
-  /// where a rotation axis lies in a face's plane) rounding would give it random signs and many
-  /// spurious crossings; the edge's own sweep is a candidate already.
-  double g_nudged(const UV& p, double noise) const {
-    const double v = g(p);
-    if (std::abs(v) > noise) return v;
-    const UV c(0.5 * (u0 + u1), 0.5 * (v0 + v1));
-    return g(p + 1e-6 * (c - p));
-  }
   gp_Pnt point(const UV& p) const { return S.Value(p.x(), p.y()); }
 };
 
@@ -133,7 +123,7 @@ std::vector<std::vector<UV>> trace(const Field& F, double ua, double ub, double 
   double gmax = 0;
   for (int i = 0; i <= nu; ++i)
     for (int j = 0; j <= nv; ++j) {
-      G[i * (nv + 1) + j] = F.g_nudged(node(i, j), 1e-10 * gscale);
+      G[i * (nv + 1) + j] = F.g(node(i, j));
       gmax = std::max(gmax, std::abs(G[i * (nv + 1) + j]));
     }
   if (gmax <= 1e-9 * gscale) return {};  // the whole face slides within itself
@@ -386,7 +376,7 @@ std::vector<GrazingCurve> grazing_curves(const TopoDS_Face& face, const ScrewJoi
     for (int k = 0; k <= n; ++k) {
       gp_Pnt2d q = pc->Value(f + (l - f) * k / n);
       UV cur(q.X(), q.Y());
-      double gc = F.g_nudged(cur, 1e-10 * vscale);
+      double gc = F.g(cur);
       if (k > 0 && (gc > 0) != (gprev > 0)) {
         double s = root01(
             [&](double t) {
