@@ -127,7 +127,11 @@ TEST_CASE("Stage motions: a path of expressions, rotations composed left to righ
   const PathMotion turn(0, 2, tz, {PathRotation{{texpr("0"), texpr("0"), texpr("1")}, texpr("t")}});
   const ScrewStage screw(j);
   CHECK((turn.pose(0.9).dR - screw.pose(0.9).dR).norm() < 1e-12);
-  CHECK(std::isinf(turn.speed_bound(1.0)));
+  CHECK(turn.speed_bound(1.0) == Approx(1.0).epsilon(1e-9));
+  CHECK(turn.speed_bound(2.0) == Approx(2.0).epsilon(1e-9));
+  // an angle across a pole of tan has no finite bound
+  const PathMotion pole(0, 2, tz, {PathRotation{{texpr("0"), texpr("0"), texpr("1")}, texpr("tan(t)")}});
+  CHECK(std::isinf(pole.speed_bound(1.0)));
 }
 
 TEST_CASE("Stage motions: speed bounds hold at sampled points and times", "[stage_motion]") {
@@ -145,8 +149,18 @@ TEST_CASE("Stage motions: speed bounds hold at sampled points and times", "[stag
                                   KeyframeMotion::Interpolation::Screw);
   const KeyframeMotion linear_keys({0, 1, 2.5}, {random_pose(rng), random_pose(rng), random_pose(rng)},
                                    KeyframeMotion::Interpolation::Linear);
+  const Expr tr[3] = {texpr("2*cos(3*t)"), texpr("t^3/4-t"), texpr("exp(-t)*sin(t)")};
+  const PathMotion fixed_axes(0, 2.5, tr,
+                              {PathRotation{{texpr("0"), texpr("0"), texpr("1")}, texpr("1.5*t")},
+                               PathRotation{{texpr("1"), texpr("0"), texpr("0")}, texpr("sin(2*t)")}});
+  const PathMotion turning_axis(-1, 2, tr, {PathRotation{{texpr("1"), texpr("t"), texpr("cos(t)")}, texpr("2*t^2")}});
+  // a fixed angle about an axis that turns: all of the angular speed comes from the axis
+  const PathMotion axis_only(0, 2, tr, {PathRotation{{texpr("cos(3*t)"), texpr("sin(3*t)"), texpr("0.2")}, texpr("2")}});
   for (const StageMotion* m : {static_cast<const StageMotion*>(&screw), static_cast<const StageMotion*>(&screw_keys),
-                               static_cast<const StageMotion*>(&linear_keys)}) {
+                               static_cast<const StageMotion*>(&linear_keys),
+                               static_cast<const StageMotion*>(&fixed_axes),
+                               static_cast<const StageMotion*>(&turning_axis),
+                               static_cast<const StageMotion*>(&axis_only)}) {
     const double r = 1.5, bound = m->speed_bound(r);
     double seen = 0;
     for (int s = 0; s < 2000; ++s) {

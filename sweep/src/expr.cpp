@@ -1,5 +1,7 @@
 #include "sweep/expr.hpp"
 
+#include "sweep/interval.hpp"
+
 #include <charconv>
 #include <cmath>
 #include <cstdint>
@@ -326,6 +328,111 @@ Jet<O, N> op_min(const Jet<O, N>& a, const Jet<O, N>& b) {
 template <int O, int N>
 Jet<O, N> op_max(const Jet<O, N>& a, const Jet<O, N>& b) {
   return pick_first_max(a.v, b.v) ? a : b;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Enclosures: an interval for the value and one for the derivative in one variable, over a box of
+// arguments. Where a function is not differentiable (abs at 0, min and max where the arguments
+// cross) the derivative interval holds both one-sided derivatives, so it still bounds the slope.
+// `defined` is false when some point of the box may give NaN (an operation leaving its domain, or
+// an unbounded operand): the intervals then hold the values where the expression is defined, and
+// min and max, which drop a NaN argument, also hold the other argument.
+
+struct IJet {
+  Interval v, d;
+  bool defined = true;
+};
+template <>
+struct Lift<IJet> {
+  static IJet of(double k) { return {Interval::point(k), Interval::point(0.0), true}; }
+};
+
+/// f' * d, but 0 when d is 0 (as times() above: f' may be unbounded where d vanishes).
+inline Interval times(Interval f, Interval d) { return d.is_zero() ? d : f * d; }
+inline Interval pt(double k) { return Interval::point(k); }
+inline bool bounded(Interval a) { return std::isfinite(a.lo) && std::isfinite(a.hi); }
+
+/// The result of an operation whose operands were all defined (`ok`) and bounded.
+inline IJet result(Interval v, Interval d, bool ok) { return {v, d, ok && bounded(v)}; }
+inline IJet ichain(const IJet& a, Interval f0, Interval f1, bool domain = true) {
+  return result(f0, times(f1, a.d), a.defined && domain);
+}
+
+inline IJet op_neg(const IJet& a) { return {-a.v, -a.d, a.defined}; }
+inline IJet op_add(const IJet& a, const IJet& b) { return result(a.v + b.v, a.d + b.d, a.defined && b.defined); }
+inline IJet op_sub(const IJet& a, const IJet& b) { return result(a.v - b.v, a.d - b.d, a.defined && b.defined); }
+inline IJet op_mul(const IJet& a, const IJet& b) {
+  return result(a.v * b.v, times(b.v, a.d) + times(a.v, b.d), a.defined && b.defined);
+}
+inline IJet op_div(const IJet& a, const IJet& b) {
+  const Interval c = a.v / b.v;
+  return result(c, (a.d - times(c, b.d)) / b.v, a.defined && b.defined);
+}
+inline IJet op_pow(const IJet& a, const IJet& b) {
+  const Interval f = pow(a.v, b.v);
+  return result(f, times(b.v * pow(a.v, b.v - pt(1.0)), a.d) + times(f * log(a.v), b.d),
+                a.defined && b.defined && a.v.lo > 0);
+}
+inline IJet op_addk(const IJet& a, double k) { return result(a.v + pt(k), a.d, a.defined); }
+inline IJet op_ksub(double k, const IJet& a) { return result(pt(k) - a.v, -a.d, a.defined); }
+inline IJet op_mulk(const IJet& a, double k) { return result(a.v * pt(k), a.d * pt(k), a.defined); }
+inline IJet op_divk(const IJet& a, double k) { return result(a.v / pt(k), a.d / pt(k), a.defined); }
+inline IJet op_kdiv(double k, const IJet& a) { return ichain(a, pt(k) / a.v, -pt(k) / sq(a.v)); }
+inline IJet op_powk(const IJet& a, double k) {
+  const bool integer = k == std::floor(k);
+  return ichain(a, pow_const(a.v, k), pt(k) * pow_const(a.v, k - 1.0), integer || a.v.lo >= 0);
+}
+inline IJet op_kpow(double k, const IJet& a) {
+  const Interval f = const_pow(k, a.v);
+  return ichain(a, f, f * pt(log_or_zero(k)));
+}
+inline IJet op_sq(const IJet& a) { return ichain(a, sq(a.v), pt(2.0) * a.v); }
+inline IJet op_sin(const IJet& a) { return ichain(a, sin(a.v), cos(a.v), bounded(a.v)); }
+inline IJet op_cos(const IJet& a) { return ichain(a, cos(a.v), -sin(a.v), bounded(a.v)); }
+inline IJet op_tan(const IJet& a) {
+  const Interval t = tan(a.v);
+  return ichain(a, t, pt(1.0) + sq(t));
+}
+inline bool in_unit(Interval a) { return a.lo >= -1 && a.hi <= 1; }
+inline IJet op_asin(const IJet& a) {
+  return ichain(a, asin(a.v), pt(1.0) / sqrt(pt(1.0) - sq(a.v)), in_unit(a.v));
+}
+inline IJet op_acos(const IJet& a) {
+  return ichain(a, acos(a.v), pt(-1.0) / sqrt(pt(1.0) - sq(a.v)), in_unit(a.v));
+}
+inline IJet op_atan(const IJet& a) { return ichain(a, atan(a.v), pt(1.0) / (pt(1.0) + sq(a.v)), bounded(a.v)); }
+inline IJet op_atan2(const IJet& a, const IJet& b) {
+  // y = a, x = b: d atan2 = (x dy - y dx) / (x^2 + y^2)
+  return result(atan2(a.v, b.v), (times(b.v, a.d) - times(a.v, b.d)) / (sq(a.v) + sq(b.v)),
+                a.defined && b.defined && bounded(a.v) && bounded(b.v));
+}
+inline IJet op_sqrt(const IJet& a) {
+  const Interval s = sqrt(a.v);
+  return ichain(a, s, pt(0.5) / s, a.v.lo >= 0);
+}
+inline IJet op_exp(const IJet& a) {
+  const Interval e = exp(a.v);
+  return ichain(a, e, e);
+}
+inline IJet op_log(const IJet& a) { return ichain(a, log(a.v), pt(1.0) / a.v, a.v.lo > 0); }
+inline IJet op_abs(const IJet& a) {
+  const Interval sign = a.v.lo > 0 ? pt(1.0) : (a.v.hi < 0 ? pt(-1.0) : Interval{-1.0, 1.0});
+  return ichain(a, abs(a.v), sign);
+}
+/// min or max of a and b as `pick` gives it for defined operands; where one may be NaN the other
+/// may be the result (C fmin and fmax drop a NaN).
+template <class Pick>
+IJet min_or_max(const IJet& a, const IJet& b, bool a_only, bool b_only, Pick pick) {
+  IJet r{pick(a.v, b.v), a_only ? a.d : (b_only ? b.d : hull(a.d, b.d)), a.defined && b.defined};
+  if (!a.defined) r = {hull(r.v, b.v), hull(r.d, b.d), false};
+  if (!b.defined) r = {hull(r.v, a.v), hull(r.d, a.d), false};
+  return r;
+}
+inline IJet op_min(const IJet& a, const IJet& b) {
+  return min_or_max(a, b, a.v.hi < b.v.lo, b.v.hi < a.v.lo, [](Interval x, Interval y) { return min(x, y); });
+}
+inline IJet op_max(const IJet& a, const IJet& b) {
+  return min_or_max(a, b, a.v.lo > b.v.hi, b.v.lo > a.v.hi, [](Interval x, Interval y) { return max(x, y); });
 }
 
 /// Runs `n` instructions over the register file `r`.
@@ -928,6 +1035,24 @@ double Expr::eval_d1(const double* vars, double* grad) const {
 
 double Expr::eval_d2(const double* vars, double* grad, double* hess) const {
   return derivatives<2>(*impl_, vars, grad, hess);
+}
+
+bool Expr::enclose_d1(const Interval* vars, std::size_t var, Interval& value, Interval& derivative) const {
+  const Impl& m = *impl_;
+  if (m.constant) {
+    value = Interval::point(m.value);
+    derivative = Interval::point(0.0);
+    return std::isfinite(m.value);
+  }
+  const IJet r = with_registers<IJet>(m.nregs, [&](IJet* reg) {
+    for (std::size_t k = 0; k < m.active.size(); ++k)
+      reg[k] = {vars[m.active[k]], Interval::point(m.active[k] == var ? 1.0 : 0.0), bounded(vars[m.active[k]])};
+    run(m.tape.data(), m.tape.size(), reg);
+    return reg[m.result];
+  });
+  value = r.v;
+  derivative = r.d;
+  return r.defined;
 }
 
 const std::string& Expr::text() const { return impl_->text; }

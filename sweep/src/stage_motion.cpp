@@ -4,10 +4,18 @@
 #include <limits>
 
 #include "sweep/error.hpp"
+#include "sweep/interval.hpp"
 
 namespace sweep {
 
 namespace {
+
+/// The largest and the smallest length of a vector in the box v.
+double largest_norm(const Interval v[3]) { return Eigen::Vector3d(v[0].mag(), v[1].mag(), v[2].mag()).norm(); }
+double smallest_norm(const Interval v[3]) { return Eigen::Vector3d(v[0].mig(), v[1].mig(), v[2].mig()).norm(); }
+
+constexpr int kRatePieces = 256;  ///< pieces of [lo, hi] with their own rate bounds
+constexpr int kRateSplits = 6;    ///< bisections of a piece whose enclosure has no finite bound
 
 Eigen::Matrix3d hat(const Eigen::Vector3d& w) {
   Eigen::Matrix3d K;
@@ -126,6 +134,9 @@ PathMotion::PathMotion(double lo, double hi, const Expr translate[3], std::vecto
         throw InputError(field + "/rotate/" + std::to_string(k) + "/axis",
                          "the rotation axis vanishes at t = " + std::to_string(t));
     }
+  rates_.reserve(kRatePieces);
+  const auto cut = [&](int k) { return k == kRatePieces ? hi : lo + (hi - lo) * k / kRatePieces; };
+  for (int k = 0; k < kRatePieces; ++k) rates_.push_back(rates_over(cut(k), cut(k + 1)));
 }
 
 PoseJet PathMotion::pose(double t) const {
@@ -162,7 +173,39 @@ PoseJet PathMotion::pose(double t) const {
   return P;
 }
 
-double PathMotion::speed_bound(double) const { return std::numeric_limits<double>::infinity(); }
+PathMotion::RateBound PathMotion::rates_over(double a, double b) const {
+  const Interval t{a, b};
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  Interval value, d[3], axis[3], daxis[3];
+  bool defined = true;
+  for (int i = 0; i < 3; ++i) defined = translate_[i].enclose_d1(&t, 0, value, d[i]) && defined;
+  RateBound r{0.0, defined ? largest_norm(d) : kInf};
+  // R = R_1 R_2 ...: omega = omega_1 + R_1 omega_2 + ...; the rotation by angle th about the unit
+  // axis u turns at th' u + sin(th) u' + (1 - cos(th)) u x u', of length at most |th'| + 2 |u'|,
+  // and |u'| <= |axis'| / |axis|
+  for (const PathRotation& rot : rotations_) {
+    r.omega += rot.angle.enclose_d1(&t, 0, value, d[0]) ? d[0].mag() : kInf;
+    if (rot.axis[0].is_constant() && rot.axis[1].is_constant() && rot.axis[2].is_constant()) continue;
+    defined = true;
+    for (int i = 0; i < 3; ++i) defined = rot.axis[i].enclose_d1(&t, 0, axis[i], daxis[i]) && defined;
+    const double least = smallest_norm(axis);
+    r.omega += defined && least > 0 ? 2 * largest_norm(daxis) / least : kInf;
+  }
+  // the norms above are computed in rounded arithmetic from rounded-out enclosures
+  r.omega *= 1 + 1e-12;
+  r.origin *= 1 + 1e-12;
+  if (std::isfinite(r.omega) && std::isfinite(r.origin)) return r;
+  if (b - a <= (hi_ - lo_) / (kRatePieces << kRateSplits) || !(r.omega == r.omega)) return r;
+  const double m = 0.5 * (a + b);
+  const RateBound left = rates_over(a, m), right = rates_over(m, b);
+  return {std::max(left.omega, right.omega), std::max(left.origin, right.origin)};
+}
+
+double PathMotion::speed_bound(double radius) const {
+  double v = 0;
+  for (const RateBound& r : rates_) v = std::max(v, r.omega * radius + r.origin);
+  return v;
+}
 
 KeyframeMotion::KeyframeMotion(std::vector<double> times, std::vector<Eigen::Isometry3d> poses,
                                Interpolation interpolation, const std::string& field)

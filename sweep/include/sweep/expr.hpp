@@ -9,6 +9,8 @@
 
 namespace sweep {
 
+struct Interval;  // sweep/interval.hpp
+
 /// A syntax error or an unknown name. `position` is the 0-based offset of the offending character
 /// in the expression text; what() quotes the expression and marks the position.
 class ExprError : public std::runtime_error {
@@ -39,6 +41,13 @@ class Expr {
   double eval_d1(const double* vars, double* grad) const;
   /// Value, gradient and Hessian (row-major num_vars() x num_vars()).
   double eval_d2(const double* vars, double* grad, double* hess) const;
+  /// Encloses the value and the derivative in variable `var` over the box `vars` (num_vars()
+  /// intervals): at every point of the box both lie in the intervals written, rounding included.
+  /// Where the expression is not differentiable (abs, min, max) the derivative interval bounds its
+  /// one-sided slopes; where an operation has no finite bound the interval is the whole line.
+  /// Returns false when some point of the box may leave an operation's domain (the expression may
+  /// be NaN there; the intervals hold its values where it is defined).
+  bool enclose_d1(const Interval* vars, std::size_t var, Interval& value, Interval& derivative) const;
 
   const std::string& text() const;
   std::size_t num_vars() const;

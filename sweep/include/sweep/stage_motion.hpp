@@ -79,13 +79,21 @@ class PathMotion : public StageMotion {
   double lo() const override { return lo_; }
   double hi() const override { return hi_; }
   PoseJet pose(double t) const override;
-  /// Infinite: expressions have no certified bound on their derivatives here.
+  /// From interval enclosures of the expressions and their derivatives over pieces of [lo, hi]:
+  /// |dp| and |omega| <= sum over rotations of |angle'| + 2 |axis'| / |axis|. Infinite when an
+  /// enclosure has no finite bound (an axis whose box holds 0, a function across a pole).
   double speed_bound(double radius) const override;
 
  private:
+  /// Bounds of the angular speed and of the origin's speed over each piece of [lo, hi].
+  struct RateBound {
+    double omega, origin;
+  };
+  RateBound rates_over(double a, double b) const;
   double lo_, hi_;
   Expr translate_[3];
   std::vector<PathRotation> rotations_;
+  std::vector<RateBound> rates_;
 };
 
 /// Poses at increasing times, each segment between neighbours either the constant-twist screw
