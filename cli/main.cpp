@@ -13,6 +13,7 @@
 #include "args.hpp"
 #include "section_cmd.hpp"
 #include "stop_request.hpp"
+#include "worker.hpp"
 #include "occt_bridge/sweeper.hpp"
 #include "sweep/error.hpp"
 #include "sweep/spec.hpp"
@@ -26,8 +27,8 @@ const char* kUsage =
     "  run SPEC [-o OUT] [--report R.json] [--set PATH=VALUE]... [--verify] [--time-limit S]\n"
     "      [--no-direct-builds]\n"
     "      compute the swept solid; OUT by extension: .step/.stp, .brep, .stl (binary), .off;\n"
-    "      --time-limit stops the run after S seconds (status failed, exit 3); --no-direct-builds\n"
-    "      builds balls under screws and graph extrusions by the general pipeline too\n"
+    "      --time-limit stops the run after S seconds (default 600; status failed, exit 3)\n"
+    "      --no-direct-builds builds balls under screws and graph extrusions by the general pipeline too\n"
     "  check SPEC [--set PATH=VALUE]...\n"
     "      validate the spec only\n"
     "  varieties SPEC [-o V.json] [--faces F.brep|F.step] [--svg F.svg] [--set PATH=VALUE]... [--time-limit S]\n"
@@ -42,13 +43,14 @@ const char* kUsage =
     "  --help, --version\n"
     "\n"
     "exit codes: 0 success, 2 invalid input, 3 computation failed or result not valid, 1 internal error;\n"
-    "Ctrl-C (SIGINT) or SIGTERM stops a run as failed (exit 3); a second one ends the process\n";
+    "run, varieties and section compute in a worker process: --time-limit, Ctrl-C (SIGINT) or SIGTERM\n"
+    "stops them as failed (exit 3) within a second, whatever step they are in, and no output file is left\n";
 
 struct Args {
   std::string spec, out, report, faces, svg;
   std::vector<std::string> sets;
   bool verify = false;
-  double time_limit = 0;  ///< seconds; 0: none
+  double time_limit = sweep::cli::kDefaultTimeLimit;  ///< seconds
   bool direct_builds = true;
 };
 
@@ -106,7 +108,7 @@ int cmd_run(int argc, char** argv) {
   sweep::occt::RunOptions opt;
   opt.verify = a.verify;
   opt.direct_builds = a.direct_builds;
-  if (isatty(STDERR_FILENO)) opt.progress = [](const std::string& line) { std::cerr << "sweepvol: " << line << "\n"; };
+  if (sweep::cli::stderr_is_terminal()) opt.progress = [](const std::string& line) { std::cerr << "sweepvol: " << line << "\n"; };
   opt.stop = sweep::cli::stop_request(a.time_limit);
   sweep::occt::RunResult r = sweep::occt::run_sweep(s, opt);
   if (r.report.ok() && !a.out.empty()) {
@@ -143,7 +145,7 @@ int cmd_varieties(int argc, char** argv) {
   opt.variety_faces = &faces;
   std::vector<int> face_ids;
   opt.variety_face_ids = &face_ids;
-  if (isatty(STDERR_FILENO)) opt.progress = [](const std::string& line) { std::cerr << "sweepvol: " << line << "\n"; };
+  if (sweep::cli::stderr_is_terminal()) opt.progress = [](const std::string& line) { std::cerr << "sweepvol: " << line << "\n"; };
   opt.stop = sweep::cli::stop_request(a.time_limit);
   sweep::occt::RunResult r = sweep::occt::run_sweep(s, opt);
   nlohmann::json out;
@@ -173,13 +175,47 @@ int cmd_varieties(int argc, char** argv) {
   return 0;
 }
 
-}  // namespace
+/// The --time-limit a supervised command gives (the default when none); false when it gives a bad
+/// one (the command's own parser then reports it).
+bool time_limit_of(int argc, char** argv, double& seconds) {
+  seconds = sweep::cli::kDefaultTimeLimit;
+  for (int i = 2; i + 1 < argc; ++i)
+    if (std::string(argv[i]) == "--time-limit") {
+      try {
+        seconds = sweep::cli::parse_time_limit(argv[i + 1]);
+      } catch (const sweep::InputError&) {
+        return false;
+      }
+    }
+  return true;
+}
 
-int main(int argc, char** argv) {
-  if (argc < 2) {
-    std::cerr << kUsage;
-    return 2;
+/// What run, varieties and section print when their worker had to be ended: their failed report
+/// with the reason, also written to the report file of `run`.
+int report_ended(const std::string& cmd, const std::string& reason,
+                 const std::vector<std::pair<std::string, std::string>>& outputs) {
+  sweep::occt::Report report;
+  report.status = "failed";
+  report.message = reason;
+  nlohmann::json out;
+  if (cmd == "run") {
+    out = report.to_json();
+  } else {
+    out[cmd == "section" ? "sweep_section" : "sweep_varieties"] = 1;
+    out["status"] = report.status;
+    out["message"] = reason;
+    out["volume"] = report.to_json()["volume"];
+    out[cmd == "section" ? "sections" : "varieties"] = nlohmann::json::array();
   }
+  const std::string text = out.dump(2) + "\n";
+  std::cout << text;
+  for (const auto& [option, path] : outputs)
+    if (cmd == "run" && option == "--report") write_text_atomic(path, text);
+  std::cerr << "sweepvol: failed: " << reason << "\n";
+  return 3;
+}
+
+int dispatch(int argc, char** argv) {
   const std::string cmd = argv[1];
   try {
     if (cmd == "--help" || cmd == "-h" || cmd == "help") {
@@ -216,4 +252,24 @@ int main(int argc, char** argv) {
     std::cerr << "sweepvol: internal error: " << e.what() << "\n";
     return 1;
   }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    std::cerr << kUsage;
+    return 2;
+  }
+  const std::string cmd = argv[1];
+  sweep::cli::WorkerPlan plan;
+  if (cmd == "run") plan.output_options = {"-o", "--report"};
+  else if (cmd == "varieties") plan.output_options = {"-o", "--faces", "--svg"};
+  else if (cmd == "section") plan.output_options = {"-o", "--svg"};
+  else return dispatch(argc, argv);
+  if (!time_limit_of(argc, argv, plan.time_limit)) return dispatch(argc, argv);
+  plan.on_ended = [&cmd](const std::string& reason, const std::vector<std::pair<std::string, std::string>>& outputs) {
+    return report_ended(cmd, reason, outputs);
+  };
+  return sweep::cli::run_in_worker(argc, argv, plan, dispatch);
 }

@@ -2,6 +2,7 @@
 // and the SVG drawing of `sweepvol varieties --svg`.
 #include "section_cmd.hpp"
 #include "stop_request.hpp"
+#include "worker.hpp"
 #include "args.hpp"
 
 #include <algorithm>
@@ -25,7 +26,7 @@ struct SectionArgs {
   std::vector<std::string> sets;
   bool has_z = false;
   std::string z;
-  double time_limit = 0;  ///< seconds; 0: none
+  double time_limit = sweep::cli::kDefaultTimeLimit;  ///< seconds
 };
 
 /// "1,5,10": finite numbers separated by commas.
@@ -95,7 +96,7 @@ int sweep_section_main(int argc, char** argv) {
   if (!a.out.empty() && a.out == a.svg) throw sweep::InputError("-o", "-o and --svg name the same file");
   const sweep::Spec spec = sweep::load_spec(a.spec, a.sets);
   sweep::occt::RunOptions opt;
-  if (isatty(STDERR_FILENO)) opt.progress = [](const std::string& line) { std::cerr << "sweepvol: " << line << "\n"; };
+  if (sweep::cli::stderr_is_terminal()) opt.progress = [](const std::string& line) { std::cerr << "sweepvol: " << line << "\n"; };
   opt.stop = sweep::cli::stop_request(a.time_limit);
   sweep::occt::RunResult r = sweep::occt::run_sweep(spec, opt);
 

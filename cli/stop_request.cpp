@@ -6,6 +6,7 @@
 
 #include "occt_bridge/sweeper.hpp"
 #include "sweep/error.hpp"
+#include "worker.hpp"
 
 namespace sweep::cli {
 namespace {
@@ -13,6 +14,10 @@ namespace {
 volatile std::sig_atomic_t g_signal = 0;
 
 extern "C" void on_stop_signal(int sig) {
+  if (!g_signal) g_signal = sig;
+}
+
+extern "C" void on_stop_signal_once(int sig) {
   g_signal = sig;
   std::signal(sig, SIG_DFL);  // a second one ends the process
 }
@@ -30,7 +35,8 @@ double parse_time_limit(const std::string& text) {
 std::function<std::string()> stop_request(double time_limit) {
   // a signal the parent ignores (SIGINT in a shell's background job) stays ignored
   for (int sig : {SIGINT, SIGTERM})
-    if (std::signal(sig, on_stop_signal) == SIG_IGN) std::signal(sig, SIG_IGN);
+    // in a worker the supervisor ends the process at a second signal
+    if (std::signal(sig, in_worker() ? on_stop_signal : on_stop_signal_once) == SIG_IGN) std::signal(sig, SIG_IGN);
   return sweep::occt::stop_after(time_limit, []() -> std::string {
     if (const int sig = g_signal) return sig == SIGINT ? "interrupted (SIGINT)" : "terminated (SIGTERM)";
     return {};

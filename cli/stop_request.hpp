@@ -5,6 +5,9 @@
 
 namespace sweep::cli {
 
+/// The time limit of a run that gives no --time-limit (seconds).
+constexpr double kDefaultTimeLimit = 600;
+
 /// `--time-limit SECONDS`: a positive number of seconds. @throws InputError naming the option.
 double parse_time_limit(const std::string& text);
 

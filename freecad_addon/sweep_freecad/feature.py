@@ -15,6 +15,7 @@ import FreeCAD
 import Part
 
 from . import spec as specmod
+from . import worker
 from .native import core
 
 #: Values of the Status property.
@@ -79,6 +80,7 @@ class SweepFeature:
         obj.addProperty("App::PropertyFloat", "Tolerance", "Sweep",
                         "Requested geometric tolerance in model units (0: 1e-6 times the model size)")
         obj.addProperty("App::PropertyBool", "Verify", "Sweep", "Also compute the Monte Carlo volume")
+        _add_time_limit(obj)
         obj.addProperty("App::PropertyInteger", "JointCount", "Sweep", "Number of joints", _PROP_OUTPUT, True)
         for typ, name, doc in REPORT_PROPERTIES:
             obj.addProperty(typ, name, "Report", doc, _PROP_OUTPUT | _PROP_READONLY, True)
@@ -101,6 +103,7 @@ class SweepFeature:
 
     def onDocumentRestored(self, obj):
         self._syncing = False
+        _add_time_limit(obj)  # documents saved before the property existed
         if FreeCAD.GuiUp:  # a document saved without the GUI has no view provider proxy
             from .gui import view_provider
             view_provider.attach_to(obj)
@@ -137,7 +140,7 @@ class SweepFeature:
             entity = None
             if obj.Entity is not None:
                 entity = global_shape(obj.Entity).exportBrepToString()
-            result = core().run(spec, base_dir=base_dir, entity_brep=entity, verify=obj.Verify)
+            result = compute("run", obj, spec=spec, base_dir=base_dir, entity_brep=entity, verify=obj.Verify)
         except Exception as e:  # every failure becomes Status/Message, and the object is marked
             failure = _classify(e, where)
         if failure is not None:
@@ -154,6 +157,28 @@ class SweepFeature:
         shape.importBrepFromString(result["brep"])
         obj.Shape = shape
         obj.Placement = pl
+
+
+def _add_time_limit(obj):
+    if "TimeLimit" not in obj.PropertiesList:
+        obj.addProperty("App::PropertyFloat", "TimeLimit", "Sweep",
+                        "Seconds a computation may take before it is stopped as failed (0: %g)"
+                        % worker.DEFAULT_TIME_LIMIT)
+
+
+def _idle():
+    """Lets the GUI repaint while a worker computes (user input waits: no recompute re-enters)."""
+    from PySide import QtCore, QtGui
+    QtGui.QApplication.processEvents(QtCore.QEventLoop.ExcludeUserInputEvents)
+
+
+def compute(fn, obj=None, time_limit=None, **kwargs):
+    """Calls the core's `fn` (run, varieties) in a worker process (worker.py): it ends within the
+    time limit (obj.TimeLimit, else the default) whatever step it is in, and the GUI keeps
+    repainting meanwhile."""
+    if time_limit is None and obj is not None and getattr(obj, "TimeLimit", 0) > 0:
+        time_limit = obj.TimeLimit
+    return worker.call(core(), fn, time_limit=time_limit, idle=_idle if FreeCAD.GuiUp else None, **kwargs)
 
 
 def _restoring(obj):
@@ -398,7 +423,7 @@ def verify(obj, samples=None):
     spec, base_dir, _ = compose(obj)
     entity = global_shape(obj.Entity).exportBrepToString() if obj.Entity is not None else None
     kw = {"mc_samples": int(samples)} if samples else {}
-    return core().run(spec, base_dir=base_dir, entity_brep=entity, verify=True, **kw)["report"]
+    return compute("run", obj, spec=spec, base_dir=base_dir, entity_brep=entity, verify=True, **kw)["report"]
 
 
 def varieties_available():
@@ -414,7 +439,7 @@ def make_varieties(doc, obj, name="Varieties"):
         raise NotImplementedError("boundary varieties are not available yet in the sweep core")
     spec, base_dir, _ = compose(obj)
     entity = global_shape(obj.Entity).exportBrepToString() if obj.Entity is not None else None
-    result = core().varieties(spec, base_dir=base_dir, entity_brep=entity)
+    result = compute("varieties", obj, spec=spec, base_dir=base_dir, entity_brep=entity)
     if result["brep"] is None:
         raise RuntimeError("no varieties: the sweep failed: " + result["report"]["message"])
     shape = Part.Shape()

@@ -202,6 +202,61 @@ def test_no_temporary_file_left():
     check(after <= before, after - before)
 
 
+def _worker():
+    sys.path.insert(0, os.path.join(SOURCE, "freecad_addon", "sweep_freecad"))
+    import worker
+    return worker
+
+
+def test_worker_gives_the_in_process_result():
+    w = _worker()
+    spec = sphere_extrude(2)
+    here, there = sc.run(spec), w.call(sc, "run", spec=spec)
+    check(there["report"]["status"] == "ok", there["report"])
+    check(there["report"]["volume"] == here["report"]["volume"], (there["report"]["volume"], here["report"]["volume"]))
+    check(there["brep"] == here["brep"], "the worker's BRep text differs")
+    got = w.call(sc, "varieties", spec=spec)
+    check(len(got["varieties"]) == len(sc.varieties(spec)["varieties"]), got["varieties"])
+
+
+def test_worker_raises_the_cores_errors():
+    w = _worker()
+    try:
+        w.call(sc, "run", spec='{"sweep": 1, "entity": {"kind": "sphere"}}')
+        check(False, "no InputError")
+    except sc.InputError as e:
+        check(e.pointer == "/entity/center" and e.line == 1, (e.pointer, e.line, str(e)))
+
+
+def test_worker_ends_a_step_that_never_polls():
+    import time
+    w = _worker()
+    os.environ["SWEEP_TEST_WORKER_STALL"] = "30"  # the worker sleeps, ignoring SIGTERM
+    try:
+        start = time.monotonic()
+        r = w.call(sc, "run", spec=sphere_extrude(1), time_limit=1)
+        took = time.monotonic() - start
+    finally:
+        del os.environ["SWEEP_TEST_WORKER_STALL"]
+    rep = r["report"]
+    check(rep["status"] == "failed" and rep["message"] == "stopped: the time limit of 1 s was reached", rep)
+    check(r["brep"] is None, rep)
+    check(took < 2.0, "the worker ended %.2f s after its start, for a limit of 1 s" % took)
+
+
+def test_worker_cancel_during_a_boolean():
+    import threading
+    import time
+    w = _worker()
+    slow = json.load(open(os.path.join(EXAMPLES, "paper", "sec4_2_curve_three_skew_revolutes.json")))
+    threading.Timer(1.5, w.cancel).start()
+    start = time.monotonic()
+    r = w.call(sc, "run", spec=slow, base_dir=EXAMPLES)
+    took = time.monotonic() - start
+    check(r["report"]["status"] == "failed" and r["report"]["message"] == "stopped: cancelled", r["report"])
+    check(took < 2.5, "cancel took %.2f s" % (took - 1.5))
+
+
 def test_file_volume():
     brep = sc.run(json.load(open(BOX)))["brep"]
     path = os.path.join(os.environ["SWEEP_TEST_OUT"], "box.brep")
