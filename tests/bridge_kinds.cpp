@@ -10,6 +10,8 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <random>
+#include <sstream>
 
 #include "base/internal.hpp"
 #include "occt_bridge/sweeper.hpp"
@@ -244,4 +246,49 @@ TEST_CASE("Elliptic cylinders: the entity, and swept by a prismatic and a revolu
       area += w[i] * 0.5 * smax / n * rho * covered(rho) * 2 * s;
     }
   CHECK(turn.report.volume_brep == Approx(area * 2).epsilon(1e-9));
+}
+
+TEST_CASE("Kinds: placed balls along random prismatic joints are capsules, built directly and by the general pipeline") {
+  // the first one: a ball placed and turned, moved along -y, whose general build once stalled in
+  // OCCT's face merging (two halves of its cylinder, one on a left-handed frame)
+  std::vector<std::string> specs = {R"({"sweep": 1, "angles": "deg",
+      "entity": {"kind": "sphere", "center": [-0.0903, -1.6495, 0.9854], "radius": 1.7704,
+                 "placement": {"translate": [0.7682, 3.5503, -0.8804], "rotate": {"axis": [0, -1, 0], "angle": -26.054}}},
+      "motion": {"kind": "axes", "joints": [{"type": "prismatic", "point": [0, 0, 0], "direction": [0, -1, 0],
+                                              "range": [-0.9726, 8.2267]}]}})"};
+  std::vector<double> exact = {M_PI * 1.7704 * 1.7704 * (8.2267 + 0.9726) + 4 * M_PI / 3 * std::pow(1.7704, 3)};
+  std::mt19937_64 rng(38);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  auto num = [](double x) {
+    std::ostringstream o;
+    o.precision(17);
+    o << x;
+    return o.str();
+  };
+  for (int k = 0; k < 6; ++k) {
+    const double r = 0.2 + std::abs(u(rng)), lo = u(rng), hi = lo + 0.1 + 3 * std::abs(u(rng));
+    const double cx = u(rng), cy = u(rng), cz = u(rng), ax = u(rng), ay = u(rng), angle = 3 * u(rng);
+    const Eigen::Vector3d d(u(rng), u(rng), u(rng));  // the joint's direction (normalised by the spec)
+    specs.push_back(R"({"sweep": 1, "entity": {"kind": "sphere", "center": [)" + num(cx) + ", " + num(cy) + ", " +
+                    num(cz) + R"(], "radius": )" + num(r) +
+                    R"(, "placement": {"translate": [0.3, -0.5, 0.2], "rotate": {"axis": [)" + num(ax) + ", " +
+                    num(ay) + R"(, 1], "angle": )" + num(angle) +
+                    R"(}}}, "motion": {"kind": "axes", "joints": [{"type": "prismatic", "direction": [)" +
+                    num(d.x()) + ", " + num(d.y()) + ", " + num(d.z()) + R"(], "range": [)" + num(lo) + ", " + num(hi) +
+                    "]}]}}");
+    exact.push_back(M_PI * r * r * (hi - lo) + 4 * M_PI / 3 * r * r * r);
+  }
+  for (std::size_t k = 0; k < specs.size(); ++k)
+    for (const bool direct : {true, false}) {
+      INFO(specs[k] << (direct ? " (direct)" : " (general pipeline)"));
+      const sweep::Spec spec = sweep::parse_spec(specs[k], ".");
+      sweep::occt::RunOptions opt;
+      opt.direct_builds = direct;
+      opt.stop = sweep::occt::stop_after(60);
+      const auto r = sweep::occt::run_sweep(spec, opt);
+      INFO(r.report.to_json().dump());
+      CHECK(r.report.status == "ok");
+      CHECK(r.report.volume_brep == Approx(exact[k]).epsilon(1e-9));
+      if (direct) CHECK(r.report.faces == 3);  // one cylinder, two half balls
+    }
 }

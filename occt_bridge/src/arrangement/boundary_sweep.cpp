@@ -277,17 +277,71 @@ std::vector<Candidate> cut_where_through_itself(const std::vector<Candidate>& ca
   return out;
 }
 
+/// The frame of an elementary face's surface and its size (radius; torus: major + minor; cone:
+/// semi-angle, with the frame at the apex), or false for a face of another kind.
+bool elementary_frame(const TopoDS_Face& f, GeomAbs_SurfaceType* type, gp_Ax3* frame, double* size) {
+  const BRepAdaptor_Surface a(f);
+  *type = a.GetType();
+  switch (*type) {
+    case GeomAbs_Plane: *frame = a.Plane().Position(); *size = 0; return true;
+    case GeomAbs_Cylinder: *frame = a.Cylinder().Position(); *size = a.Cylinder().Radius(); return true;
+    case GeomAbs_Cone:  // located at its apex, sized by its semi-angle
+      *frame = a.Cone().Position();
+      frame->SetLocation(a.Cone().Apex());
+      *size = a.Cone().SemiAngle();
+      return true;
+    case GeomAbs_Sphere: *frame = a.Sphere().Position(); *size = a.Sphere().Radius(); return true;
+    case GeomAbs_Torus: *frame = a.Torus().Position(); *size = a.Torus().MajorRadius() + a.Torus().MinorRadius(); return true;
+    default: return false;
+  }
+}
+
+/// Whether two elementary surfaces of one type are the same point set: the same size and axis
+/// line (a plane: the same plane; a sphere: the same centre).
+bool same_domain(GeomAbs_SurfaceType type, const gp_Ax3& a, double sa, const gp_Ax3& b, double sb, double tol) {
+  if (std::abs(sa - sb) > tol) return false;
+  const gp_Vec d(a.Location(), b.Location());
+  if (type == GeomAbs_Sphere) return d.Magnitude() <= tol;
+  if (!a.Direction().IsParallel(b.Direction(), 1e-9)) return false;
+  const gp_Vec z(a.Direction());
+  if (type == GeomAbs_Plane) return std::abs(d.Dot(z)) <= tol;
+  if (type == GeomAbs_Cone || type == GeomAbs_Torus)  // one apex or centre, one orientation of the axis
+    return d.Magnitude() <= tol && a.Direction().IsEqual(b.Direction(), 1e-9);
+  return d.Crossed(z).Magnitude() <= tol;
+}
+
 /// The solid with the pieces of one analytic surface (the halves of a closed face, the pieces
 /// sections made) merged into one face each, when every face is analytic and the merged solid is
 /// valid; else the solid as it is. (Spline-bounded faces are left alone: merging them can stall.)
+/// Pieces of one surface given in frames of opposite handedness are not merged: OCCT 7.6's
+/// ShapeUpgrade_UnifySameDomain loops on them (the two halves of a ball's capsule, one on a
+/// left-handed cylinder).
 TopoDS_Shape merged_analytic_faces(const TopoDS_Shape& solid) {
-  for (TopExp_Explorer ex(solid, TopAbs_FACE); ex.More(); ex.Next()) {
-    const GeomAbs_SurfaceType t = BRepAdaptor_Surface(TopoDS::Face(ex.Current())).GetType();
-    if (t != GeomAbs_Plane && t != GeomAbs_Cylinder && t != GeomAbs_Cone && t != GeomAbs_Sphere && t != GeomAbs_Torus)
-      return solid;
+  const TopoDS_Shape copy = BRepBuilderAPI_Copy(solid).Shape();
+  struct Elementary {
+    TopoDS_Face face;
+    GeomAbs_SurfaceType type;
+    gp_Ax3 frame;
+    double size;
+  };
+  std::vector<Elementary> faces;
+  double tol = 0;
+  for (TopExp_Explorer ex(copy, TopAbs_FACE); ex.More(); ex.Next()) {
+    Elementary e{TopoDS::Face(ex.Current()), GeomAbs_OtherSurface, gp_Ax3(), 0};
+    if (!elementary_frame(e.face, &e.type, &e.frame, &e.size)) return solid;
+    faces.push_back(e);
+    tol = std::max(tol, BRep_Tool::Tolerance(e.face));
   }
   try {
-    ShapeUpgrade_UnifySameDomain unify(BRepBuilderAPI_Copy(solid).Shape(), true, true, true);
+    ShapeUpgrade_UnifySameDomain unify(copy, true, true, true);
+    for (std::size_t i = 0; i < faces.size(); ++i)
+      for (std::size_t k = i + 1; k < faces.size(); ++k) {
+        const Elementary &a = faces[i], &b = faces[k];
+        if (a.type != b.type || a.frame.Direct() == b.frame.Direct()) continue;
+        if (!same_domain(a.type, a.frame, a.size, b.frame, b.size, 10 * tol)) continue;
+        for (const TopoDS_Face& f : {a.face, b.face})
+          for (TopExp_Explorer ex(f, TopAbs_EDGE); ex.More(); ex.Next()) unify.KeepShape(ex.Current());
+      }
     unify.Build();
     const TopoDS_Shape merged = unify.Shape();
     if (!merged.IsNull() && BRepCheck_Analyzer(merged).IsValid()) return merged;

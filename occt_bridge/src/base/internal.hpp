@@ -116,6 +116,11 @@ bool helix_reach_exceeds(const ScrewJoint& j, const Eigen::Vector3d& c, double T
 TopoDS_Shape ball_screw_sweep(const Eigen::Vector3d& c, double r, const ScrewJoint& j, double T, double fit_tol,
                               double size, double* fit_err, std::vector<TopoDS_Face>* faces);
 
+/// A ball of centre c and radius r translated by length along the unit direction d: the capsule,
+/// exact (a cylinder and two half balls). `roles` as below. Null for a degenerate input.
+TopoDS_Shape ball_line_sweep(const Eigen::Vector3d& c, double r, const Eigen::Vector3d& d, double length,
+                             std::vector<TopoDS_Face>* faces, std::vector<int>* roles);
+
 /// The same sweep when the helix's neighbouring turns meet (and only those: balls half a turn or two
 /// turns apart are disjoint) over a range of at least one and a half turns: the tube trimmed where
 /// the next and the previous turn cover it, and the half balls trimmed where the turn after the start

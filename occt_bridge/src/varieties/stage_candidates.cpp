@@ -143,7 +143,12 @@ TopoDS_Shape direct_ball_screw(const TopoDS_Shape& body, const ScrewJoint& j, do
                                double tol, double* fit_err, std::vector<TopoDS_Face>* faces, std::vector<int>* roles) {
   Eigen::Vector3d centre;
   double radius = 0;
-  if (j.type != JointType::Helical || j.pitch == 0 || !sphere_of(body, &centre, &radius)) return {};
+  if (j.type == JointType::Revolute || !sphere_of(body, &centre, &radius)) return {};
+  if (j.type == JointType::Prismatic) {
+    const TopoDS_Shape capsule = ball_line_sweep(centre, radius, j.direction, T, faces, roles);
+    return valid_and_closed(capsule) ? capsule : TopoDS_Shape();
+  }
+  if (j.pitch == 0) return {};
   *roles = {0, 1, 2};
   const TopoDS_Shape direct = helix_reach_exceeds(j, centre, T, radius, std::max(1e-6 * radius, 100 * tol))
                                   ? ball_screw_sweep(centre, radius, j, T, fit_tol, size, fit_err, faces)
@@ -325,7 +330,7 @@ LimitIds stage_candidates(const StageInput& in, double& fit_err, Candidates& can
 
 TopoDS_Shape ball_screw_stage(const StageInput& in, double& fit_err, Candidates& cand) {
   const ScrewJoint& j = in.j;
-  if (in.dim != 3 || j.type != JointType::Helical || j.pitch == 0) return {};
+  if (in.dim != 3 || j.type == JointType::Revolute || (j.type == JointType::Helical && j.pitch == 0)) return {};
   double err = fit_err;
   std::vector<TopoDS_Face> fs;
   std::vector<int> roles;
@@ -336,7 +341,8 @@ TopoDS_Shape ball_screw_stage(const StageInput& in, double& fit_err, Candidates&
   const std::string qn = "q" + std::to_string(in.joint_no);
   const int tube = cand.add_variety({in.stage, in.joint_no, "interior",
                                      "grazing curve (n . v = 0) on entity face 1 swept by joint " +
-                                         std::to_string(in.joint_no) + " (a tube about the centre's helix)",
+                                         std::to_string(in.joint_no) + " (a tube about the centre's " +
+                                         (j.type == JointType::Prismatic ? "segment)" : "helix)"),
                                      nlohmann::json::object(), nlohmann::json{{qn, {0.0, in.T}}}});
   const int lo_id = add_limit_variety(in, false, cand), hi_id = add_limit_variety(in, true, cand);
   for (std::size_t k = 0; k < fs.size(); ++k) cand.add(roles[k] == 0 ? tube : roles[k] == 1 ? lo_id : hi_id, {fs[k]}, true);
