@@ -344,7 +344,12 @@ struct IJet {
 };
 template <>
 struct Lift<IJet> {
-  static IJet of(double k) { return {Interval::point(k), Interval::point(0.0), true}; }
+  /// A constant folded to NaN or an infinity (sqrt(-1), 1/0) is nowhere defined: its enclosure is
+  /// the whole line, so that min and max, which drop it at a point, still hold the other operand.
+  static IJet of(double k) {
+    if (!std::isfinite(k)) return {Interval::entire(), Interval::point(0.0), false};
+    return {Interval::point(k), Interval::point(0.0), true};
+  }
 };
 
 /// f' * d, but 0 when d is 0 (as times() above: f' may be unbounded where d vanishes).
@@ -1040,7 +1045,7 @@ double Expr::eval_d2(const double* vars, double* grad, double* hess) const {
 bool Expr::enclose_d1(const Interval* vars, std::size_t var, Interval& value, Interval& derivative) const {
   const Impl& m = *impl_;
   if (m.constant) {
-    value = Interval::point(m.value);
+    value = std::isfinite(m.value) ? Interval::point(m.value) : Interval::entire();
     derivative = Interval::point(0.0);
     return std::isfinite(m.value);
   }
