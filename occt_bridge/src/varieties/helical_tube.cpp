@@ -24,6 +24,7 @@
 #include <BRepCheck_Analyzer.hxx>
 #include <BRepLib.hxx>
 #include <BRepTools.hxx>
+#include <BRep_Builder.hxx>
 #include <BRep_Tool.hxx>
 #include <Geom_BSplineSurface.hxx>
 #include <Geom_RectangularTrimmedSurface.hxx>
@@ -192,6 +193,14 @@ TopoDS_Shape sew_solid(const std::vector<TopoDS_Face>& fs, double tol, const Out
   sew.Perform(stop_range());
   check_stop();
   TopoDS_Shape sewn = sew.SewedShape();
+  if (sewn.ShapeType() == TopAbs_FACE) {  // one face closed on itself (a sphere, a torus): its shell
+    TopoDS_Shell one;
+    BRep_Builder b;
+    b.MakeShell(one);
+    b.Add(one, sewn);
+    one.Closed(BRep_Tool::IsClosed(one));
+    sewn = one;
+  }
   TopExp_Explorer sx(sewn, TopAbs_SHELL);
   if (!sx.More()) return {};
   const TopoDS_Shell shell = TopoDS::Shell(sx.Current());

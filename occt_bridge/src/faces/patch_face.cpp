@@ -1,0 +1,243 @@
+#include "faces/patch_face.hpp"
+
+#include <BRepAdaptor_Surface.hxx>
+#include <BRepBuilderAPI_MakeEdge.hxx>
+#include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepBuilderAPI_MakeWire.hxx>
+#include <BRepLProp_SLProps.hxx>
+#include <BRep_Tool.hxx>
+#include <GeomAPI_PointsToBSpline.hxx>
+#include <GeomAPI_ProjectPointOnSurf.hxx>
+#include <Geom_BSplineCurve.hxx>
+#include <Geom_BSplineSurface.hxx>
+#include <Geom_ConicalSurface.hxx>
+#include <Geom_CylindricalSurface.hxx>
+#include <Geom_Plane.hxx>
+#include <Geom_SphericalSurface.hxx>
+#include <Geom_ToroidalSurface.hxx>
+#include <ShapeFix_Face.hxx>
+#include <Standard_Failure.hxx>
+#include <TColStd_Array1OfReal.hxx>
+#include <TColgp_Array1OfPnt.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Edge.hxx>
+#include <gp_Circ.hxx>
+#include <gp_Elips.hxx>
+#include <Eigen/Eigenvalues>
+#include <gp_Lin.hxx>
+#include <TopoDS_Wire.hxx>
+#include <algorithm>
+#include <cmath>
+
+#include "base/internal.hpp"
+#include "sweep/error.hpp"
+
+namespace sweep::occt {
+namespace {
+
+gp_Dir to_dir(const Eigen::Vector3d& v) { return gp_Dir(v.x(), v.y(), v.z()); }
+
+/// The elementary surface of a form, or null for a general one (or a cone of no slope).
+Handle(Geom_Surface) form_surface(const PatchForm& f) {
+  const gp_Ax3 frame(to_pnt(f.origin), to_dir(f.axis), to_dir(f.ref));
+  switch (f.kind) {
+    case PatchForm::Kind::Plane: return new Geom_Plane(frame);
+    case PatchForm::Kind::Cylinder: return new Geom_CylindricalSurface(frame, f.radius);
+    case PatchForm::Kind::Cone:
+      if (!(std::abs(f.semi_angle) > 1e-12 && std::abs(f.semi_angle) < M_PI / 2)) return nullptr;
+      return new Geom_ConicalSurface(frame, f.semi_angle, f.radius);
+    case PatchForm::Kind::Sphere: return new Geom_SphericalSurface(frame, f.radius);
+    case PatchForm::Kind::Torus: return new Geom_ToroidalSurface(frame, f.radius, f.minor);
+    default: return nullptr;
+  }
+}
+
+/// The sides of the patch's domain (0: v = lo, 1: u = hi, 2: v = hi, 3: u = lo), counter-clockwise,
+/// as points; collapsed sides and pairs that meet each other are left out.
+std::vector<std::vector<gp_Pnt>> boundary_sides(const Patch& p, double tol) {
+  const int n = 64;
+  std::vector<std::vector<gp_Pnt>> sides(4);
+  for (int i = 0; i <= n; ++i) {
+    const double fu = double(i) / n;
+    const double u = p.lo(0) + (p.hi(0) - p.lo(0)) * fu, v = p.lo(1) + (p.hi(1) - p.lo(1)) * fu;
+    sides[0].push_back(to_pnt(p.eval(u, p.lo(1)).x));
+    sides[1].push_back(to_pnt(p.eval(p.hi(0), v).x));
+    sides[2].push_back(to_pnt(p.eval(p.hi(0) + p.lo(0) - u, p.hi(1)).x));
+    sides[3].push_back(to_pnt(p.eval(p.lo(0), p.hi(1) + p.lo(1) - v).x));
+  }
+  std::vector<bool> keep(4);
+  for (int k = 0; k < 4; ++k)
+    keep[k] = std::any_of(sides[k].begin(), sides[k].end(), [&](const gp_Pnt& q) { return q.Distance(sides[k][0]) > tol; });
+  for (int k = 0; k < 2; ++k) {
+    bool meet = true;  // opposite sides run against each other counter-clockwise
+    for (int i = 0; i <= n && meet; ++i) meet = sides[k][i].Distance(sides[k + 2][n - i]) <= tol;
+    if (meet) keep[k] = keep[k + 2] = false;
+  }
+  std::vector<std::vector<gp_Pnt>> out;
+  for (int k = 0; k < 4; ++k)
+    if (keep[k]) out.push_back(sides[k]);
+  return out;
+}
+
+/// The edge through the points of one side: a segment, a circle arc or a whole ellipse when every
+/// point lies on it to rounding, else a fitted curve (a line or a circle when canonical_curve
+/// finds one within tol).
+TopoDS_Edge side_edge(const std::vector<gp_Pnt>& side, double tol) {
+  const gp_Pnt &a = side.front(), &m = side[side.size() / 2], &b = side.back();
+  double size = 0;
+  for (const gp_Pnt& q : side) size = std::max(size, q.Distance(a));
+  const double exact = 1e-13 * std::max(size, 1.0);
+  const gp_Vec ab(a, b), am(a, m);
+  if (ab.Magnitude() > exact && am.Crossed(ab).Magnitude() <= exact * ab.Magnitude()) {
+    const gp_Lin line(a, gp_Dir(ab));
+    if (std::all_of(side.begin(), side.end(), [&](const gp_Pnt& q) { return line.Distance(q) <= exact; }))
+      return BRepBuilderAPI_MakeEdge(a, b).Edge();
+  }
+  // a circle through a, the point a third along and the point two thirds along (a closed side's
+  // last point is its first)
+  const gp_Pnt &p1 = side[side.size() / 3], &p2 = side[2 * side.size() / 3];
+  const Eigen::Vector3d A = to_eigen(a), B = to_eigen(p1), C = to_eigen(p2);
+  const Eigen::Vector3d n = (B - A).cross(C - A);
+  if (n.norm() > exact * size) {
+    const Eigen::Vector3d centre =
+        A + ((C - A).squaredNorm() * n.cross(B - A) + (B - A).squaredNorm() * (C - A).cross(n)) / (2 * n.squaredNorm());
+    const double r = (A - centre).norm();
+    if (std::all_of(side.begin(), side.end(), [&](const gp_Pnt& q) {
+          return std::abs((to_eigen(q) - centre).norm() - r) <= exact && std::abs((to_eigen(q) - centre).dot(n.normalized())) <= exact;
+        })) {
+      const Eigen::Vector3d x = (A - centre).normalized();
+      const gp_Circ circ(gp_Ax2(to_pnt(centre), gp_Dir(n.x(), n.y(), n.z()), gp_Dir(x.x(), x.y(), x.z())), r);
+      if (a.Distance(b) <= exact) return BRepBuilderAPI_MakeEdge(circ).Edge();
+      return BRepBuilderAPI_MakeEdge(circ, a, b).Edge();
+    }
+  }
+  if (a.Distance(b) <= exact && n.norm() > exact * size) {
+    // a whole ellipse sampled uniformly in its angle: the points' mean is its centre and their
+    // second moments are (a^2 X X^T + b^2 Y Y^T) / 2
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+    for (std::size_t i = 0; i + 1 < side.size(); ++i) centre += to_eigen(side[i]);
+    centre /= double(side.size() - 1);
+    Eigen::Matrix3d moments = Eigen::Matrix3d::Zero();
+    for (std::size_t i = 0; i + 1 < side.size(); ++i) {
+      const Eigen::Vector3d d = to_eigen(side[i]) - centre;
+      moments += d * d.transpose();
+    }
+    moments *= 2.0 / double(side.size() - 1);
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(moments);
+    const double major = std::sqrt(std::max(eig.eigenvalues()[2], 0.0)), minor = std::sqrt(std::max(eig.eigenvalues()[1], 0.0));
+    const Eigen::Vector3d X = eig.eigenvectors().col(2), Y = eig.eigenvectors().col(1), N = X.cross(Y);
+    if (minor > exact && std::all_of(side.begin(), side.end(), [&](const gp_Pnt& q) {
+          const Eigen::Vector3d d = to_eigen(q) - centre;
+          return std::abs(d.dot(N)) <= exact && std::abs(std::hypot(d.dot(X) / major, d.dot(Y) / minor) - 1) * minor <= exact;
+        }))
+      return BRepBuilderAPI_MakeEdge(gp_Elips(gp_Ax2(to_pnt(centre), gp_Dir(N.x(), N.y(), N.z()), gp_Dir(X.x(), X.y(), X.z())),
+                                              major, minor)).Edge();
+  }
+  TColgp_Array1OfPnt pts(1, int(side.size()));
+  for (std::size_t i = 0; i < side.size(); ++i) pts.SetValue(int(i) + 1, side[i]);
+  GeomAPI_PointsToBSpline fit(pts, 3, 8, GeomAbs_C2, 0.1 * tol);
+  if (!fit.IsDone()) return {};
+  double first = fit.Curve()->FirstParameter(), last = fit.Curve()->LastParameter();
+  const Handle(Geom_Curve) c = canonical_curve(fit.Curve(), first, last, tol);
+  return BRepBuilderAPI_MakeEdge(c, first, last).Edge();
+}
+
+/// The face of `surface` bounded by the patch's sides (each an exact line or circle when it is one).
+TopoDS_Face bounded_face(const Handle(Geom_Surface)& surface, const Patch& p, double tol) {
+  BRepBuilderAPI_MakeWire wire;
+  for (const auto& side : boundary_sides(p, tol)) {
+    const TopoDS_Edge e = side_edge(side, tol);
+    if (e.IsNull()) return {};
+    wire.Add(e);
+    if (!wire.IsDone()) return {};
+  }
+  if (!wire.IsDone() || !wire.Wire().Closed()) return {};
+  BRepBuilderAPI_MakeFace mf(surface, wire.Wire(), true);
+  if (!mf.IsDone()) return {};
+  ShapeFix_Face fix(mf.Face());  // pcurves, and the wire's orientation on the surface
+  fix.Perform();
+  return fix.Face();
+}
+
+/// The largest distance from a grid of patch points to the face's surface.
+double measured_error(const Patch& p, const TopoDS_Face& face, bool own_parameters) {
+  const Handle(Geom_Surface) s = BRep_Tool::Surface(face);
+  const int n = 16;
+  double e = 0;
+  for (int i = 0; i <= n; ++i)
+    for (int k = 0; k <= n; ++k) {
+      const double u = p.lo(0) + (p.hi(0) - p.lo(0)) * i / n, v = p.lo(1) + (p.hi(1) - p.lo(1)) * k / n;
+      const gp_Pnt x = to_pnt(p.eval(u, v).x);
+      if (own_parameters) {
+        const double sv = p.form().kind == PatchForm::Kind::Cone ? v / std::cos(p.form().semi_angle) : v;
+        e = std::max(e, s->Value(u, sv).Distance(x));
+      } else {
+        GeomAPI_ProjectPointOnSurf proj(x, s);
+        e = std::max(e, proj.NbPoints() > 0 ? proj.LowerDistance() : 1e300);
+      }
+    }
+  return e;
+}
+
+/// Turns the face so that its normal agrees with the patch's outward one at the patch's middle.
+TopoDS_Face oriented(const TopoDS_Face& face, const Patch& p) {
+  const PatchPoint m = p.eval(0.5 * (p.lo(0) + p.hi(0)), 0.5 * (p.lo(1) + p.hi(1)));
+  const Eigen::Vector3d out = p.orientation() * m.xu.cross(m.xv);
+  GeomAPI_ProjectPointOnSurf proj(to_pnt(m.x), BRep_Tool::Surface(face));
+  if (proj.NbPoints() == 0) return face;
+  double u, v;
+  proj.LowerDistanceParameters(u, v);
+  BRepLProp_SLProps props(BRepAdaptor_Surface(face, false), u, v, 1, 1e-9);
+  if (!props.IsNormalDefined()) return face;
+  Eigen::Vector3d n = to_eigen(gp_Vec(props.Normal()));
+  if (face.Orientation() == TopAbs_REVERSED) n = -n;
+  return n.dot(out) < 0 ? TopoDS::Face(face.Reversed()) : face;
+}
+
+}  // namespace
+
+PatchFace patch_face(const Patch& p, double tol) {
+  if (p.dim() != 2) throw ComputeError("patch_face: '" + p.what() + "' is not a surface patch");
+  PatchFace out;
+  try {
+    const Handle(Geom_Surface) surface = form_surface(p.form());
+    if (!surface.IsNull() && p.form().surface_parameters) {
+      const double scale = p.form().kind == PatchForm::Kind::Cone ? 1 / std::cos(p.form().semi_angle) : 1.0;
+      BRepBuilderAPI_MakeFace mf(surface, p.lo(0), p.hi(0), scale * p.lo(1), scale * p.hi(1), 1e-9 * tol);
+      if (mf.IsDone()) {
+        out.face = mf.Face();
+        out.error = measured_error(p, out.face, true);
+        out.exact = true;
+      }
+    } else if (!surface.IsNull()) {
+      try {
+        out.face = bounded_face(surface, p, tol);
+      } catch (const Standard_Failure&) {  // a side OCCT cannot make an edge of: fitted below
+        out.face.Nullify();
+      }
+      if (!out.face.IsNull()) {
+        out.error = measured_error(p, out.face, false);
+        out.exact = true;
+      }
+    }
+    if (out.face.IsNull() || out.error > tol) {
+      auto exact = [&p](double fu, double fv) {
+        return to_pnt(p.eval(p.lo(0) + (p.hi(0) - p.lo(0)) * fu, p.lo(1) + (p.hi(1) - p.lo(1)) * fv).x);
+      };
+      double err = 0;
+      const Handle(Geom_BSplineSurface) fitted = fit_grid_surface(exact, tol, 0.1 * tol, 16, 256, &err);
+      if (fitted.IsNull()) throw ComputeError("no B-spline fits '" + p.what() + "'");
+      BRepBuilderAPI_MakeFace mf(fitted, std::max(err, 1e-9 * tol));
+      if (!mf.IsDone()) throw ComputeError("no face on the B-spline of '" + p.what() + "'");
+      out.face = mf.Face();
+      out.exact = false;
+      out.error = std::max(err, measured_error(p, out.face, false));
+    }
+  } catch (const Standard_Failure& f) {
+    throw ComputeError("no face for '" + p.what() + "': " + (f.GetMessageString() ? f.GetMessageString() : "OCCT error"));
+  }
+  out.face = oriented(out.face, p);
+  return out;
+}
+
+}  // namespace sweep::occt

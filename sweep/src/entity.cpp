@@ -1,0 +1,105 @@
+// Patches, the frames and revolved faces the primitives share, and make_entity(): the one switch
+// on the entity kind.
+#include "sweep/entity.hpp"
+
+#include <cmath>
+
+#include "entity_internal.hpp"
+
+namespace sweep {
+
+const char* to_string(PatchForm::Kind k) {
+  switch (k) {
+    case PatchForm::Kind::General: return "general";
+    case PatchForm::Kind::Plane: return "plane";
+    case PatchForm::Kind::Cylinder: return "cylinder";
+    case PatchForm::Kind::Cone: return "cone";
+    case PatchForm::Kind::Sphere: return "sphere";
+    case PatchForm::Kind::Torus: return "torus";
+    case PatchForm::Kind::Line: return "line";
+    case PatchForm::Kind::Circle: return "circle";
+    case PatchForm::Kind::Ellipse: return "ellipse";
+  }
+  return "?";
+}
+
+Patch::Patch(int dim, std::vector<double> lo, std::vector<double> hi, Map map, PatchForm form, std::string what,
+             int orientation)
+    : dim_(dim), lo_(std::move(lo)), hi_(std::move(hi)), map_(std::move(map)), form_(form), what_(std::move(what)),
+      orientation_(orientation < 0 ? -1 : 1) {}
+
+namespace entity_detail {
+
+using Eigen::Vector2d;
+using Eigen::Vector3d;
+
+Frame placed_frame(const Eigen::Isometry3d& placement, const Vector3d& origin, const Vector3d& axis) {
+  const Vector3d z = axis.normalized();
+  const Vector3d t = std::abs(z.x()) < 0.9 ? Vector3d::UnitX() : Vector3d::UnitY();
+  const Vector3d x = z.cross(t).normalized();
+  Frame f;
+  f.o = placement * origin;
+  f.z = placement.linear() * z;
+  f.x = placement.linear() * x;
+  f.y = f.z.cross(f.x);
+  return f;
+}
+
+PatchPtr revolved_face(const Frame& f, std::function<Vector2d(double)> profile,
+                       std::function<Vector2d(double)> dprofile, double v0, double v1, PatchForm form,
+                       std::string what, int orientation) {
+  auto map = [f, profile = std::move(profile), dprofile = std::move(dprofile)](const double* s) {
+    const double c = std::cos(s[0]), sn = std::sin(s[0]);
+    const Vector2d rz = profile(s[1]), d = dprofile(s[1]);
+    const Vector3d radial = c * f.x + sn * f.y, around = -sn * f.x + c * f.y;
+    return PatchPoint{f.o + rz[0] * radial + rz[1] * f.z, rz[0] * around, d[0] * radial + d[1] * f.z};
+  };
+  return std::make_shared<Patch>(2, std::vector<double>{0.0, v0}, std::vector<double>{2 * M_PI, v1}, std::move(map),
+                                 form, std::move(what), orientation);
+}
+
+PatchPtr circle_edge(const Frame& f, double rho, double h, std::string what) {
+  PatchForm form;
+  form.kind = PatchForm::Kind::Circle;
+  form.origin = f.o + h * f.z;
+  form.axis = f.z;
+  form.ref = f.x;
+  form.radius = rho;
+  auto map = [f, rho, h](const double* s) {
+    const double c = std::cos(s[0]), sn = std::sin(s[0]);
+    return PatchPoint{f.o + rho * (c * f.x + sn * f.y) + h * f.z, rho * (-sn * f.x + c * f.y), Vector3d::Zero()};
+  };
+  return std::make_shared<Patch>(1, std::vector<double>{0.0}, std::vector<double>{2 * M_PI}, std::move(map), form,
+                                 std::move(what));
+}
+
+PatchPtr disk_face(const Frame& f, double rho, double h, std::string what, int orientation) {
+  PatchForm form;
+  form.kind = PatchForm::Kind::Plane;
+  form.origin = f.o + h * f.z;
+  form.axis = f.z;
+  form.ref = f.x;
+  return revolved_face(
+      f, [h](double v) { return Vector2d(v, h); }, [](double) { return Vector2d(1.0, 0.0); }, 0.0, rho, form,
+      std::move(what), orientation);
+}
+
+}  // namespace entity_detail
+
+EntityPtr make_entity(const EntitySpec& e) {
+  using namespace entity_detail;
+  switch (e.kind) {
+    case EntityKind::Point:
+    case EntityKind::Curve:
+    case EntityKind::Surface: return make_parametric(e);
+    case EntityKind::Sphere: return make_sphere(e);
+    case EntityKind::Box: return make_box(e);
+    case EntityKind::Cylinder:
+    case EntityKind::Cone: return make_cylinder_or_cone(e);
+    case EntityKind::Torus: return make_torus(e);
+    case EntityKind::EllipticCylinder: return make_elliptic_cylinder(e);
+    default: return nullptr;  // brep and mesh: the bridge's; the others are not supported yet
+  }
+}
+
+}  // namespace sweep

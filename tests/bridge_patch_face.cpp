@@ -1,0 +1,109 @@
+// Core patches as OCCT faces (faces/patch_face.cpp): every primitive's faces, sewn, make a valid
+// closed solid of its closed-form volume, on exact surfaces of the kinds their forms name; a
+// patch with no closed form becomes a B-spline whose measured error is within the tolerance.
+#include <BRepAdaptor_Surface.hxx>
+#include <BRepCheck_Analyzer.hxx>
+#include <BRepGProp.hxx>
+#include <GProp_GProps.hxx>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <random>
+#include <sstream>
+
+#include "base/internal.hpp"
+#include "faces/patch_face.hpp"
+#include "sweep/entity.hpp"
+#include "sweep/spec.hpp"
+
+namespace {
+
+std::string num(double x) {
+  std::ostringstream o;
+  o.precision(17);
+  o << x;
+  return o.str();
+}
+
+sweep::EntityPtr entity_of(const std::string& entity_json) {
+  const std::string text = R"({"sweep": 1, "entity": )" + entity_json +
+                           R"(, "motion": {"kind": "axes", "joints": [{"type": "prismatic", "direction": [0, 0, 1],
+                              "range": [0, 1]}]}})";
+  return sweep::make_entity(sweep::parse_spec(text, "").entity);
+}
+
+GeomAbs_SurfaceType occt_type(sweep::PatchForm::Kind k) {
+  switch (k) {
+    case sweep::PatchForm::Kind::Plane: return GeomAbs_Plane;
+    case sweep::PatchForm::Kind::Cylinder: return GeomAbs_Cylinder;
+    case sweep::PatchForm::Kind::Cone: return GeomAbs_Cone;
+    case sweep::PatchForm::Kind::Sphere: return GeomAbs_Sphere;
+    case sweep::PatchForm::Kind::Torus: return GeomAbs_Torus;
+    default: return GeomAbs_BSplineSurface;
+  }
+}
+
+}  // namespace
+
+TEST_CASE("Patch faces: the faces of placed primitives sew into their solids") {
+  std::mt19937_64 rng(4040);
+  std::uniform_real_distribution<double> u(-1.0, 1.0), size(0.3, 2.0);
+  for (int round = 0; round < 3; ++round) {
+    const double r = size(rng), r2 = size(rng), h = size(rng), a = size(rng), b = size(rng), c = size(rng);
+    const double ax = u(rng), ay = u(rng), angle = 3 * u(rng), tx = u(rng), ty = u(rng);
+    const std::string pl = R"(, "placement": {"translate": [)" + num(tx) + ", " + num(ty) +
+                           R"(, 0.5], "rotate": {"axis": [)" + num(ax) + ", " + num(ay) + R"(, 1], "angle": )" +
+                           num(angle) + "}}";
+    const double big = std::max(r, r2), small = 0.45 * std::min(r, r2);
+    const std::vector<std::pair<std::string, double>> cases = {
+        {R"({"kind": "sphere", "center": [0.1, 0.2, 0.3], "radius": )" + num(r) + pl + "}", 4.0 / 3 * M_PI * r * r * r},
+        {R"({"kind": "box", "min": [0, 0, 0], "max": [)" + num(a) + ", " + num(b) + ", " + num(c) + "]" + pl + "}",
+         a * b * c},
+        {R"({"kind": "cylinder", "base": [0, 0, 0], "axis": [1, 1, 0.3], "radius": )" + num(r) + R"(, "height": )" +
+             num(h) + pl + "}",
+         M_PI * r * r * h},
+        {R"({"kind": "cone", "base": [0, 0, 0], "axis": [0.2, -1, 0.5], "radius1": )" + num(r) + R"(, "radius2": )" +
+             num(r2) + R"(, "height": )" + num(h) + pl + "}",
+         M_PI * h / 3 * (r * r + r * r2 + r2 * r2)},
+        {R"({"kind": "cone", "base": [0, 0, 0], "axis": [0, 0, 1], "radius1": )" + num(r) +
+             R"(, "radius2": 0, "height": )" + num(h) + pl + "}",
+         M_PI * h / 3 * r * r},
+        {R"({"kind": "torus", "center": [0, 0, 0], "axis": [1, 0, 1], "major": )" + num(big) + R"(, "minor": )" +
+             num(small) + pl + "}",
+         2 * M_PI * M_PI * big * small * small},
+        {R"({"kind": "elliptic_cylinder", "base": [0, 0, 0], "axis": [0.3, 0.1, 1], "a": )" + num(a) + R"(, "b": )" +
+             num(b) + R"(, "height": )" + num(h) + pl + "}",
+         M_PI * a * b * h},
+        {R"({"kind": "elliptic_cylinder", "base": [0, 0, 0], "axis": [0, 0, 1], "a": )" + num(a) + R"(, "b": )" +
+             num(b) + R"(, "height": )" + num(h) + R"(, "twist": "1.2*u")" + pl + "}",
+         M_PI * a * b * h},
+    };
+    for (const auto& [json, volume] : cases) {
+      INFO(json);
+      const sweep::EntityPtr e = entity_of(json);
+      REQUIRE(e);
+      const double scale = e->box().sizes().maxCoeff(), tol = 1e-6 * scale;
+      std::vector<TopoDS_Face> faces;
+      double area = 0, error = 0;
+      for (const sweep::PatchPtr& p : e->faces()) {
+        INFO(p->what());
+        const sweep::occt::PatchFace f = sweep::occt::patch_face(*p, tol);
+        const bool closed_form = p->form().kind != sweep::PatchForm::Kind::General;
+        CHECK(f.exact == closed_form);
+        CHECK(BRepAdaptor_Surface(f.face).GetType() == occt_type(p->form().kind));
+        CHECK(f.error <= (closed_form ? 1e-12 * scale : tol));
+        error = std::max(error, f.error);
+        GProp_GProps g;
+        BRepGProp::SurfaceProperties(f.face, g);
+        area += g.Mass();
+        faces.push_back(f.face);
+      }
+      const TopoDS_Shape solid = sweep::occt::sew_solid(faces, std::max(1e-7 * scale, 10 * error));
+      REQUIRE_FALSE(solid.IsNull());
+      CHECK(BRepCheck_Analyzer(solid).IsValid());
+      GProp_GProps g;
+      BRepGProp::VolumeProperties(solid, g);
+      // a fitted face moves the boundary by at most its error
+      CHECK(std::abs(g.Mass() - volume) <= 1e-9 * volume + error * area);
+    }
+  }
+}
