@@ -1,0 +1,46 @@
+#pragma once
+/// @file variety.hpp
+/// The boundary varieties of one stage of a sweep as patches (000, section 3): the entity's faces
+/// carried to the ends of the range (limit varieties), its edges swept over the range (boundary
+/// varieties), and the grazing curves of its faces, where the motion is tangent to the face
+/// (n . v = 0), which swept over the range make the envelope (interior varieties).
+#include <Eigen/Core>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "sweep/entity.hpp"
+#include "sweep/stage_motion.hpp"
+
+namespace sweep {
+
+/// The patch carried by the motion's pose at t: x -> M(t) x. It fixes t (a limit variety when t
+/// is an end of the range).
+PatchPtr moved_patch(const PatchPtr& patch, std::shared_ptr<const StageMotion> motion, double t,
+                     const std::string& what);
+
+/// The sweep of a curve patch over the motion's range: (s, t) -> M(t) c(s), a boundary variety.
+/// Its orientation is the one of (dc/ds, dM/dt c), which classification decides on later.
+PatchPtr swept_curve(const PatchPtr& curve, std::shared_ptr<const StageMotion> motion, const std::string& what);
+
+/// The grazing function of a face at its parameters (u, v) at the pose `pose`: g = n . w, with
+/// n = xu x xv (not normalised) and w = R^T (dR x + dp) the velocity of the body point x seen in
+/// the body's frame. Its zero set is the face's grazing set at that instant.
+double grazing_value(const Patch& face, const PoseJet& pose, double u, double v);
+
+/// The grazing set of a face at one instant, in its parameter domain.
+struct GrazingSet {
+  /// Polylines on which g vanishes (each point the root of g on an edge of the grid); a closed one
+  /// repeats its first point at the end.
+  std::vector<std::vector<Eigen::Vector2d>> curves;
+  /// Sides of the domain (0: v = lo, 1: u = hi, 2: v = hi, 3: u = lo) along which g vanishes
+  /// everywhere (the face grazes all along them: a seam line, a rim).
+  std::vector<int> sides;
+};
+
+/// The grazing set of `face` at time t, traced on an n x n grid of the domain (marching squares:
+/// every sign change of g between grid points is found; curves closer together than a grid cell
+/// may be joined).
+GrazingSet grazing_set(const Patch& face, const StageMotion& motion, double t, int n = 64);
+
+}  // namespace sweep
