@@ -89,9 +89,13 @@ TEST_CASE("Interval: enclosures are tight where the range is known", "[interval]
   CHECK(r.value.hi == Approx(2).margin(eps));
   CHECK(r.slope.lo == Approx(-1).margin(eps));
   CHECK(r.slope.hi == Approx(1).margin(eps));
-  r = enclose("sqrt(x)", -1, 4);  // on its domain
+  r = enclose("sqrt(x)", 0, 4);
   CHECK(r.value.lo == Approx(0).margin(eps));
   CHECK(r.value.hi == Approx(2).margin(eps));
+  r = enclose("sqrt(x)", -1, 4);  // a box that leaves the domain: no bound
+  CHECK_FALSE(r.defined);
+  CHECK(std::isinf(r.value.lo));
+  CHECK(std::isinf(r.value.hi));
   r = enclose("x^3", -2, 1);
   CHECK(r.value.lo == Approx(-8).margin(eps));
   CHECK(r.value.hi == Approx(1).margin(eps));
@@ -122,9 +126,12 @@ TEST_CASE("Interval: an expression that may leave its domain says so", "[interva
   CHECK_FALSE(enclose("asin(x)", 0, 2).defined);
   CHECK_FALSE(enclose("x^0.5", -1, 1).defined);
   CHECK(enclose("x^3", -1, 1).defined);
-  // min drops a NaN argument (C fmin): where sqrt is undefined the value is the other argument
+  // min drops a NaN argument (C fmin): where sqrt is undefined the value is the other argument,
+  // and an enclosure over a box that may leave a domain is the whole line
   const Enclosure r = enclose("min(sqrt(x-1), 2)", 0.9, 1.1);
   CHECK_FALSE(r.defined);
   CHECK(r.value.contains(2.0));
+  CHECK(std::isinf(r.value.lo));
+  CHECK_FALSE(enclose("log(2+x)^log(0+x)^e", -0.5, 1.5).defined);
   CHECK(misses("min(sqrt(x-1), 2)", 0.9, 1.1, 64) == 0);
 }

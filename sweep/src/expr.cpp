@@ -1055,8 +1055,10 @@ bool Expr::enclose_d1(const Interval* vars, std::size_t var, Interval& value, In
     run(m.tape.data(), m.tape.size(), reg);
     return reg[m.result];
   });
-  value = r.v;
-  derivative = r.d;
+  // a box where an operation may leave its domain may also hold points whose value is finite
+  // through infinite intermediates (log(2)^(log(0)^e) = 0): no bound holds there
+  value = r.defined ? r.v : Interval::entire();
+  derivative = r.defined ? r.d : Interval::entire();
   return r.defined;
 }
 

@@ -46,7 +46,7 @@ class Expr {
   /// Where the expression is not differentiable (abs, min, max) the derivative interval bounds its
   /// one-sided slopes; where an operation has no finite bound the interval is the whole line.
   /// Returns false when some point of the box may leave an operation's domain (the expression may
-  /// be NaN there; the intervals hold its values where it is defined).
+  /// be NaN there, or finite through infinite intermediates); the intervals are then the whole line.
   bool enclose_d1(const Interval* vars, std::size_t var, Interval& value, Interval& derivative) const;
 
   const std::string& text() const;
