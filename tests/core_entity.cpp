@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "sweep/entity.hpp"
+#include "sweep/membership.hpp"
 
 using Eigen::Vector3d;
 using namespace sweep;
@@ -300,4 +301,41 @@ TEST_CASE("Entities: kinds the core does not build give none", "[entity]") {
   EntitySpec mesh;
   mesh.kind = EntityKind::Mesh;
   CHECK_FALSE(make_entity(mesh));
+}
+
+TEST_CASE("Entities: the signed distances and orbit solids of membership and orbits are the entity's", "[entity]") {
+  std::mt19937_64 rng(16);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const std::string pl = placement(rng);
+  for (const std::string& json :
+       {R"({"kind": "sphere", "center": [0.3, 0, 0], "radius": 0.7)" + pl + "}",
+        R"({"kind": "box", "min": [0, 0, 0], "max": [1, 0.5, 0.7])" + pl + "}",
+        R"({"kind": "cylinder", "base": [0, 0, 0], "axis": [1, 0, 1], "radius": 0.4, "height": 1.2)" + pl + "}",
+        R"({"kind": "cone", "base": [0, 0, 0], "axis": [0, 1, 1], "radius1": 0.6, "radius2": 0.2, "height": 1)" + pl + "}",
+        R"({"kind": "torus", "center": [0, 0, 0], "axis": [0, 0, 1], "major": 1, "minor": 0.3)" + pl + "}"}) {
+    INFO(json);
+    const EntitySpec spec = parse_spec(R"({"sweep": 1, "entity": )" + json +
+                                           R"(, "motion": {"kind": "axes", "joints": [{"type": "prismatic",
+                                              "direction": [0, 0, 1], "range": [0, 1]}]}})",
+                                       "")
+                                .entity;
+    const EntityPtr e = make_entity(spec);
+    const auto sd = make_signed_distance(spec);
+    const OrbitSolidPtr orbit = make_orbit_solid(spec);
+    REQUIRE(e);
+    REQUIRE(sd);
+    REQUIRE(orbit);
+    for (int k = 0; k < 500; ++k) {
+      const Vector3d p = e->box().center() + e->box().sizes().cwiseProduct(Vector3d(u(rng), u(rng), u(rng)));
+      CHECK((*sd)(p) == e->distance(p));
+      if (std::abs(e->distance(p)) > 1e-9) CHECK(orbit->contains(p) == e->inside(p));
+    }
+  }
+  EntitySpec twisted = parse_spec(R"J({"sweep": 1, "entity": {"kind": "elliptic_cylinder", "base": [0, 0, 0],
+      "axis": [0, 0, 1], "a": 1, "b": 0.5, "height": 2, "twist": "u"}, "motion": {"kind": "axes", "joints": [
+      {"type": "prismatic", "direction": [0, 0, 1], "range": [0, 1]}]}})J",
+                                  "")
+                           .entity;
+  CHECK_FALSE(make_signed_distance(twisted));
+  CHECK_FALSE(make_orbit_solid(twisted));
 }

@@ -37,6 +37,7 @@ class BuiltEntity : public Entity {
   Eigen::AlignedBox3d box_;
   std::function<bool(const Eigen::Vector3d&)> inside_;
   std::unique_ptr<SignedDistance> distance_;
+  OrbitSolidPtr orbit_;
   std::vector<PatchPtr> faces_, edges_;
 
   EntityKind kind() const override { return kind_; }
@@ -45,6 +46,7 @@ class BuiltEntity : public Entity {
   bool inside(const Eigen::Vector3d& p) const override { return inside_ && inside_(p); }
   bool has_distance_bound() const override { return bool(distance_); }
   double distance(const Eigen::Vector3d& p) const override { return (*distance_)(p); }
+  OrbitSolidPtr orbit_solid() const override { return orbit_; }
   const std::vector<PatchPtr>& faces() const override { return faces_; }
   const std::vector<PatchPtr>& edges() const override { return edges_; }
 };

@@ -17,13 +17,37 @@ Vector3d circle_half_extent(const Vector3d& z, double rho) {
   return rho * (Vector3d::Ones() - z.cwiseAbs2()).cwiseMax(0.0).cwiseSqrt();
 }
 
-std::shared_ptr<BuiltEntity> solid(const EntitySpec& e) {
+/// A distance given in the entity's own frame, carried by its placement (rigid: still 1-Lipschitz).
+class PlacedDistance : public SignedDistance {
+ public:
+  PlacedDistance(const Eigen::Isometry3d& placement, std::function<double(const Vector3d&)> f)
+      : inverse_(placement.inverse()), f_(std::move(f)) {}
+  double operator()(const Vector3d& p) const override { return f_(inverse_ * p); }
+
+ private:
+  Eigen::Isometry3d inverse_;
+  std::function<double(const Vector3d&)> f_;
+};
+
+/// The frame of the entity's own coordinates whose third column is `axis` (placed_frame's, unplaced).
+Eigen::Matrix3d local_frame(const Vector3d& axis) {
+  const Frame f = placed_frame(Eigen::Isometry3d::Identity(), Vector3d::Zero(), axis);
+  Eigen::Matrix3d F;
+  F << f.x, f.y, f.z;
+  return F;
+}
+
+/// A solid entity with the distance bound `local` (in its own frame) and, when it has one, the
+/// orbit solid `orbit` (in its own frame); its inside test is the bound's sign.
+std::shared_ptr<BuiltEntity> solid(const EntitySpec& e, std::function<double(const Vector3d&)> local,
+                                   OrbitSolidPtr orbit) {
   auto s = std::make_shared<BuiltEntity>();
   s->kind_ = e.kind;
   s->dimension_ = 3;
-  std::shared_ptr<const SignedDistance> sd = make_signed_distance(e);
+  std::shared_ptr<const SignedDistance> sd = std::make_shared<PlacedDistance>(e.placement, local);
   s->inside_ = [sd](const Vector3d& p) { return (*sd)(p) <= 0; };
-  s->distance_ = make_signed_distance(e);
+  s->distance_ = std::make_unique<PlacedDistance>(e.placement, std::move(local));
+  if (orbit) s->orbit_ = e.placement.isApprox(Eigen::Isometry3d::Identity(), 0.0) ? orbit : orbit_placed(orbit, e.placement);
   return s;
 }
 
@@ -43,7 +67,9 @@ PatchForm form_of(PatchForm::Kind kind, const Frame& f, double radius = 0, doubl
 }  // namespace
 
 std::shared_ptr<BuiltEntity> make_sphere(const EntitySpec& e) {
-  auto s = solid(e);
+  const Vector3d c = e.center;
+  const double radius = e.radius;
+  auto s = solid(e, [c, radius](const Vector3d& p) { return (p - c).norm() - radius; }, orbit_sphere(c, radius));
   const Frame f = placed_frame(e.placement, e.center, Vector3d::UnitZ());
   const double r = e.radius;
   s->box_ = Eigen::AlignedBox3d(f.o - Vector3d::Constant(r), f.o + Vector3d::Constant(r));
@@ -55,7 +81,16 @@ std::shared_ptr<BuiltEntity> make_sphere(const EntitySpec& e) {
 }
 
 std::shared_ptr<BuiltEntity> make_torus(const EntitySpec& e) {
-  auto s = solid(e);
+  const Eigen::Matrix3d F = local_frame(e.axis);
+  const Vector3d c = e.center;
+  const double major = e.major, minor = e.minor;
+  auto s = solid(
+      e,
+      [F, c, major, minor](const Vector3d& p) {
+        const Vector3d l = F.transpose() * (p - c);
+        return std::hypot(std::hypot(l.x(), l.y()) - major, l.z()) - minor;
+      },
+      orbit_torus(c, e.axis, major, minor));
   const Frame f = placed_frame(e.placement, e.center, e.axis);
   const double R = e.major, r = e.minor;
   const Vector3d half = circle_half_extent(f.z, R) + Vector3d::Constant(r);
@@ -68,9 +103,28 @@ std::shared_ptr<BuiltEntity> make_torus(const EntitySpec& e) {
 }
 
 std::shared_ptr<BuiltEntity> make_cylinder_or_cone(const EntitySpec& e) {
-  auto s = solid(e);
   const bool cone = e.kind == EntityKind::Cone;
   const double r1 = cone ? e.radius1 : e.radius, r2 = cone ? e.radius2 : e.radius, h = e.height;
+  const Eigen::Matrix3d F = local_frame(e.axis);
+  const Vector3d b = e.base;
+  // the slab 0 <= z <= h and the side through both rims, whose larger signed distance is
+  // 1-Lipschitz with the right sign (for a cylinder, the exact distance)
+  std::function<double(const Vector3d&)> distance;
+  if (cone)
+    distance = [F, b, r1, r2, h](const Vector3d& p) {
+      const Vector3d l = F.transpose() * (p - b);
+      const double rho = std::hypot(l.x(), l.y()), slab = std::abs(l.z() - 0.5 * h) - 0.5 * h;
+      // the line from (r1, 0) to (r2, h) in (rho, z), its outward normal (h, r1 - r2)
+      const double side = ((rho - r1) * h + l.z() * (r1 - r2)) / std::hypot(h, r1 - r2);
+      return std::max(slab, side);
+    };
+  else
+    distance = [F, b, r1, h](const Vector3d& p) {
+      const Vector3d l = F.transpose() * (p - b);
+      const double dr = std::hypot(l.x(), l.y()) - r1, dz = std::abs(l.z() - 0.5 * h) - 0.5 * h;
+      return std::hypot(std::max(dr, 0.0), std::max(dz, 0.0)) + std::min(std::max(dr, dz), 0.0);
+    };
+  auto s = solid(e, std::move(distance), cone ? orbit_cone(b, e.axis, r1, r2, h) : orbit_cylinder(b, e.axis, r1, h));
   const Frame f = placed_frame(e.placement, e.base, e.axis);
   const Vector3d lo_half = circle_half_extent(f.z, r1), hi_half = circle_half_extent(f.z, r2);
   s->box_ = Eigen::AlignedBox3d(f.o - lo_half, f.o + lo_half);
@@ -98,7 +152,14 @@ std::shared_ptr<BuiltEntity> make_cylinder_or_cone(const EntitySpec& e) {
 }
 
 std::shared_ptr<BuiltEntity> make_box(const EntitySpec& e) {
-  auto s = solid(e);
+  const Vector3d centre = 0.5 * (e.min + e.max), half = 0.5 * (e.max - e.min);
+  auto s = solid(
+      e,
+      [centre, half](const Vector3d& p) {
+        const Vector3d q = (p - centre).cwiseAbs() - half;
+        return q.cwiseMax(0.0).norm() + std::min(q.maxCoeff(), 0.0);
+      },
+      orbit_box(e.min, e.max));
   const Eigen::Matrix3d R = e.placement.linear();
   const Vector3d o = e.placement * e.min, L = e.max - e.min;
   s->box_ = Eigen::AlignedBox3d(o, o);
@@ -167,7 +228,20 @@ std::shared_ptr<BuiltEntity> make_elliptic_cylinder(const EntitySpec& e) {
     return std::pow(l.dot(X) / A, 2) + std::pow(l.dot(Y) / B, 2) <= 1;
   };
   const bool twisted = e.twist && !e.twist->is_constant();
-  if (!twisted) s->distance_ = make_signed_distance(e);
+  if (!twisted) {
+    // the slab and min(a, b) (|(x/a, y/b)| - 1), whose gradient is at most 1 in norm: the larger of
+    // the two is 1-Lipschitz with the right sign (a twisted one has none here)
+    const Eigen::Matrix3d F = e.elliptic_frame();
+    const double phi = e.twist_at(0.0);
+    const Vector3d X = std::cos(phi) * F.col(0) + std::sin(phi) * F.col(1), Y = F.col(2).cross(X), Z = F.col(2);
+    const Vector3d base = e.base;
+    s->distance_ = std::make_unique<PlacedDistance>(e.placement, [X, Y, Z, base, A, B, h](const Vector3d& p) {
+      const Vector3d l = p - base;
+      const double slab = std::abs(l.dot(Z) - 0.5 * h) - 0.5 * h;
+      const double side = std::min(A, B) * (std::hypot(l.dot(X) / A, l.dot(Y) / B) - 1.0);
+      return std::max(slab, side);
+    });
+  }
   // a section's box: exact when untwisted, else that of the circle about it
   Vector3d X0, Y0;
   axes(0.0, X0, Y0, nullptr);

@@ -7,6 +7,7 @@
 #include <random>
 #include <vector>
 
+#include "sweep/entity.hpp"
 #include "sweep/error.hpp"
 
 namespace sweep {
@@ -14,19 +15,6 @@ namespace {
 
 using Eigen::Vector3d;
 
-/// Wraps a local-frame distance with the entity placement (rigid, so still 1-Lipschitz).
-class Placed : public SignedDistance {
- public:
-  Placed(Eigen::Isometry3d placement, std::function<double(const Vector3d&)> f)
-      : inv_(placement.inverse()), f_(std::move(f)) {}
-  double operator()(const Vector3d& p) const override { return f_(inv_ * p); }
-
- private:
-  Eigen::Isometry3d inv_;
-  std::function<double(const Vector3d&)> f_;
-};
-
-/// Orthonormal frame with `axis` as its third column.
 /// A box of the branch and bounds (joint values, then entity parameters).
 struct SearchBox {
   std::vector<double> lo, hi;
@@ -42,87 +30,22 @@ void push_halves(std::vector<SearchBox>& stack, SearchBox b, std::size_t k) {
   stack.push_back(std::move(b));
 }
 
-Eigen::Matrix3d frame_of(const Vector3d& axis) {
-  Vector3d z = axis.normalized();
-  Vector3d t = std::abs(z.x()) < 0.9 ? Vector3d::UnitX() : Vector3d::UnitY();
-  Vector3d x = z.cross(t).normalized();
-  Eigen::Matrix3d F;
-  F.col(0) = x;
-  F.col(1) = z.cross(x);
-  F.col(2) = z;
-  return F;
-}
+/// The distance bound of an entity, as a SignedDistance.
+class EntityDistance : public SignedDistance {
+ public:
+  explicit EntityDistance(EntityPtr e) : e_(std::move(e)) {}
+  double operator()(const Vector3d& p) const override { return e_->distance(p); }
+
+ private:
+  EntityPtr e_;
+};
 
 }  // namespace
 
 std::unique_ptr<SignedDistance> make_signed_distance(const EntitySpec& e) {
-  switch (e.kind) {
-    case EntityKind::Sphere: {
-      Vector3d c = e.center;
-      double r = e.radius;
-      return std::make_unique<Placed>(e.placement, [c, r](const Vector3d& p) { return (p - c).norm() - r; });
-    }
-    case EntityKind::Box: {
-      Vector3d c = 0.5 * (e.min + e.max), h = 0.5 * (e.max - e.min);
-      return std::make_unique<Placed>(e.placement, [c, h](const Vector3d& p) {
-        Vector3d q = (p - c).cwiseAbs() - h;
-        return q.cwiseMax(0.0).norm() + std::min(q.maxCoeff(), 0.0);
-      });
-    }
-    case EntityKind::Cylinder: {
-      Eigen::Matrix3d F = frame_of(e.axis);
-      Vector3d b = e.base;
-      double r = e.radius, hh = 0.5 * e.height;
-      return std::make_unique<Placed>(e.placement, [F, b, r, hh](const Vector3d& p) {
-        Vector3d l = F.transpose() * (p - b);
-        double dr = std::hypot(l.x(), l.y()) - r, dz = std::abs(l.z() - hh) - hh;
-        return std::hypot(std::max(dr, 0.0), std::max(dz, 0.0)) + std::min(std::max(dr, dz), 0.0);
-      });
-    }
-    case EntityKind::EllipticCylinder: {
-      // untwisted: the slab and min(a, b) (|(x/a, y/b)| - 1), whose gradient is at most 1 in norm;
-      // the maximum of the two is 1-Lipschitz with the right sign (a twisted one has none here)
-      if (e.twist && !e.twist->is_constant()) return nullptr;
-      const Eigen::Matrix3d F = e.elliptic_frame();
-      const double phi = e.twist_at(0.0);
-      const Vector3d X = std::cos(phi) * F.col(0) + std::sin(phi) * F.col(1), Y = F.col(2).cross(X), Z = F.col(2);
-      const Vector3d b = e.base;
-      const double A = e.a, B = e.b, h = e.height;
-      return std::make_unique<Placed>(e.placement, [X, Y, Z, b, A, B, h](const Vector3d& p) {
-        const Vector3d l = p - b;
-        const double slab = std::abs(l.dot(Z) - 0.5 * h) - 0.5 * h;
-        const double side = std::min(A, B) * (std::hypot(l.dot(X) / A, l.dot(Y) / B) - 1.0);
-        return std::max(slab, side);
-      });
-    }
-    case EntityKind::Cone: {
-      // Intersection of the slab 0<=z<=h and the infinite cone through the two rims: the maximum
-      // of the two signed distances is 1-Lipschitz with the right sign.
-      Eigen::Matrix3d F = frame_of(e.axis);
-      Vector3d b = e.base;
-      double r1 = e.radius1, r2 = e.radius2, h = e.height;
-      return std::make_unique<Placed>(e.placement, [F, b, r1, r2, h](const Vector3d& p) {
-        Vector3d l = F.transpose() * (p - b);
-        double rho = std::hypot(l.x(), l.y());
-        double slab = std::abs(l.z() - 0.5 * h) - 0.5 * h;
-        // line from (r1, 0) to (r2, h) in (rho, z); outward normal (h, r1 - r2) normalized
-        double nx = h, nz = r1 - r2, len = std::hypot(nx, nz);
-        double side = ((rho - r1) * nx + (l.z()) * nz) / len;
-        return std::max(slab, side);
-      });
-    }
-    case EntityKind::Torus: {
-      Eigen::Matrix3d F = frame_of(e.axis);
-      Vector3d c = e.center;
-      double R = e.major, r = e.minor;
-      return std::make_unique<Placed>(e.placement, [F, c, R, r](const Vector3d& p) {
-        Vector3d l = F.transpose() * (p - c);
-        return std::hypot(std::hypot(l.x(), l.y()) - R, l.z()) - r;
-      });
-    }
-    default:
-      return nullptr;
-  }
+  EntityPtr entity = make_entity(e);
+  if (!entity || !entity->has_distance_bound()) return nullptr;
+  return std::make_unique<EntityDistance>(std::move(entity));
 }
 
 bool in_swept_set(const SignedDistance& sd, const Motion& motion, const Vector3d& x,

@@ -1,5 +1,7 @@
 #include "sweep/orbit.hpp"
 
+#include "sweep/entity.hpp"
+
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -373,16 +375,8 @@ OrbitSolidPtr orbit_placed(OrbitSolidPtr s, const Eigen::Isometry3d& placement) 
 }
 
 OrbitSolidPtr make_orbit_solid(const EntitySpec& e) {
-  OrbitSolidPtr s;
-  switch (e.kind) {
-    case EntityKind::Sphere: s = orbit_sphere(e.center, e.radius); break;
-    case EntityKind::Box: s = orbit_box(e.min, e.max); break;
-    case EntityKind::Cylinder: s = orbit_cylinder(e.base, e.axis, e.radius, e.height); break;
-    case EntityKind::Cone: s = orbit_cone(e.base, e.axis, e.radius1, e.radius2, e.height); break;
-    case EntityKind::Torus: s = orbit_torus(e.center, e.axis, e.major, e.minor); break;
-    default: return nullptr;
-  }
-  return e.placement.isApprox(Eigen::Isometry3d::Identity(), 0.0) ? s : orbit_placed(s, e.placement);
+  const EntityPtr entity = make_entity(e);
+  return entity ? entity->orbit_solid() : nullptr;
 }
 
 bool in_joint_sweep(const OrbitSolid& body, const ScrewJoint& j, double T, const Eigen::Vector3d& x) {

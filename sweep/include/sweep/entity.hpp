@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "sweep/orbit.hpp"
 #include "sweep/spec.hpp"
 
 namespace sweep {
@@ -92,6 +93,8 @@ class Entity {
   /// is not called).
   virtual bool has_distance_bound() const = 0;
   virtual double distance(const Eigen::Vector3d& p) const = 0;
+  /// The solid as orbit.hpp's exact orbit intersections take it (primitives), or null.
+  virtual OrbitSolidPtr orbit_solid() const = 0;
   /// The boundary of a solid as faces (each with its outward orientation); a surface entity is its
   /// own one face, a curve its own one edge, a point its own one patch.
   virtual const std::vector<PatchPtr>& faces() const = 0;

@@ -54,8 +54,8 @@ class OrbitSolid {
 };
 using OrbitSolidPtr = std::shared_ptr<const OrbitSolid>;
 
-/// The primitive solid entities (sphere, box, cylinder, cone, torus, elliptic cylinder without
-/// twist) with their placement; nullptr for other kinds.
+/// The orbit solid of a primitive entity (sphere, box, cylinder, cone, torus) with its placement
+/// (Entity::orbit_solid()); nullptr for other kinds.
 OrbitSolidPtr make_orbit_solid(const EntitySpec& e);
 
 /// Building blocks, in the frame they are given in.
