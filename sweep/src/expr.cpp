@@ -378,16 +378,26 @@ inline IJet op_pow(const IJet& a, const IJet& b) {
   return result(f, times(b.v * pow(a.v, b.v - pt(1.0)), a.d) + times(f * log(a.v), b.d),
                 a.defined && b.defined && a.v.lo > 0);
 }
-inline IJet op_addk(const IJet& a, double k) { return result(a.v + pt(k), a.d, a.defined); }
-inline IJet op_ksub(double k, const IJet& a) { return result(pt(k) - a.v, -a.d, a.defined); }
-inline IJet op_mulk(const IJet& a, double k) { return result(a.v * pt(k), a.d * pt(k), a.defined); }
-inline IJet op_divk(const IJet& a, double k) { return result(a.v / pt(k), a.d / pt(k), a.defined); }
-inline IJet op_kdiv(double k, const IJet& a) { return ichain(a, pt(k) / a.v, -pt(k) / sq(a.v)); }
+/// An operation with a constant folded to NaN or an infinity (0^-2): nowhere a bound.
+inline IJet nowhere() { return {Interval::entire(), Interval::entire(), false}; }
+inline IJet op_addk(const IJet& a, double k) { return std::isfinite(k) ? result(a.v + pt(k), a.d, a.defined) : nowhere(); }
+inline IJet op_ksub(double k, const IJet& a) { return std::isfinite(k) ? result(pt(k) - a.v, -a.d, a.defined) : nowhere(); }
+inline IJet op_mulk(const IJet& a, double k) {
+  return std::isfinite(k) ? result(a.v * pt(k), a.d * pt(k), a.defined) : nowhere();
+}
+inline IJet op_divk(const IJet& a, double k) {
+  return std::isfinite(k) ? result(a.v / pt(k), a.d / pt(k), a.defined) : nowhere();
+}
+inline IJet op_kdiv(double k, const IJet& a) {
+  return std::isfinite(k) ? ichain(a, pt(k) / a.v, -pt(k) / sq(a.v)) : nowhere();
+}
 inline IJet op_powk(const IJet& a, double k) {
+  if (!std::isfinite(k)) return nowhere();
   const bool integer = k == std::floor(k);
   return ichain(a, pow_const(a.v, k), pt(k) * pow_const(a.v, k - 1.0), integer || a.v.lo >= 0);
 }
 inline IJet op_kpow(double k, const IJet& a) {
+  if (!std::isfinite(k)) return nowhere();
   const Interval f = const_pow(k, a.v);
   return ichain(a, f, f * pt(log_or_zero(k)));
 }
