@@ -310,12 +310,21 @@ bool same_domain(GeomAbs_SurfaceType type, const gp_Ax3& a, double sa, const gp_
   return d.Crossed(z).Magnitude() <= tol;
 }
 
+/// Whether the angle parameters of two frames on one axis line turn the same way about it (u
+/// turns counterclockwise about the axis of a right-handed frame, clockwise about a left-handed
+/// one's).
+bool same_turn(const gp_Ax3& a, const gp_Ax3& b) {
+  const gp_Vec ta = a.Direct() ? gp_Vec(a.Direction()) : -gp_Vec(a.Direction());
+  const gp_Vec tb = b.Direct() ? gp_Vec(b.Direction()) : -gp_Vec(b.Direction());
+  return ta.Dot(tb) > 0;
+}
+
 /// The solid with the pieces of one analytic surface (the halves of a closed face, the pieces
 /// sections made) merged into one face each, when every face is analytic and the merged solid is
 /// valid; else the solid as it is. (Spline-bounded faces are left alone: merging them can stall.)
-/// Pieces of one surface given in frames of opposite handedness are not merged: OCCT 7.6's
-/// ShapeUpgrade_UnifySameDomain loops on them (the two halves of a ball's capsule, one on a
-/// left-handed cylinder).
+/// Pieces of one surface of revolution (cylinder, cone, sphere, torus) whose angle parameters turn
+/// opposite ways about its axis are not merged: OCCT 7.6's ShapeUpgrade_UnifySameDomain loops on
+/// them (the two halves of a ball's capsule, one on a left-handed cylinder of the same axis).
 TopoDS_Shape merged_analytic_faces(const TopoDS_Shape& solid) {
   const TopoDS_Shape copy = BRepBuilderAPI_Copy(solid).Shape();
   struct Elementary {
@@ -337,7 +346,7 @@ TopoDS_Shape merged_analytic_faces(const TopoDS_Shape& solid) {
     for (std::size_t i = 0; i < faces.size(); ++i)
       for (std::size_t k = i + 1; k < faces.size(); ++k) {
         const Elementary &a = faces[i], &b = faces[k];
-        if (a.type != b.type || a.frame.Direct() == b.frame.Direct()) continue;
+        if (a.type != b.type || a.type == GeomAbs_Plane || same_turn(a.frame, b.frame)) continue;
         if (!same_domain(a.type, a.frame, a.size, b.frame, b.size, 10 * tol)) continue;
         for (const TopoDS_Face& f : {a.face, b.face})
           for (TopExp_Explorer ex(f, TopAbs_EDGE); ex.More(); ex.Next()) unify.KeepShape(ex.Current());
