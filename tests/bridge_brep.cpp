@@ -23,6 +23,8 @@ TEST_CASE("Brep entity: box with a hole from STEP, extruded along the hole") {
   CHECK(r.report.closed);
   CHECK(r.report.volume_brep == Approx(expected).epsilon(1e-6));
   CHECK(r.report.volume_divergence == Approx(expected).epsilon(1e-6));
+  // the pieces of each surface merged: the box's six faces and the hole's cylinder
+  CHECK(r.report.faces == 7);
   const std::string out = SWEEP_BINARY_DIR "/box_hole_swept.step";
   sweep::occt::write_shape(*r.shape, out, 1e-3);
   CHECK(sweep::occt::file_volume(out) == Approx(expected).epsilon(1e-6));

@@ -1,6 +1,7 @@
 #pragma once
 // Shared by the entity implementations (entity*.cpp): frames, the patches of revolved profiles,
 // and the one Entity class that every core kind fills in.
+#include <optional>
 #include <vector>
 
 #include "sweep/entity.hpp"
@@ -29,6 +30,18 @@ PatchPtr circle_edge(const Frame& f, double rho, double h, std::string what);
 /// The disk of radius rho at height h about f's z axis (its normal -z when orientation is +1).
 PatchPtr disk_face(const Frame& f, double rho, double h, std::string what, int orientation);
 
+/// A distance given in the entity's own frame, carried by its placement (rigid: still 1-Lipschitz).
+class PlacedDistance : public SignedDistance {
+ public:
+  PlacedDistance(const Eigen::Isometry3d& placement, std::function<double(const Eigen::Vector3d&)> f)
+      : inverse_(placement.inverse()), f_(std::move(f)) {}
+  double operator()(const Eigen::Vector3d& p) const override { return f_(inverse_ * p); }
+
+ private:
+  Eigen::Isometry3d inverse_;
+  std::function<double(const Eigen::Vector3d&)> f_;
+};
+
 /// The Entity that every core kind builds: its parts filled in by the kind's maker.
 class BuiltEntity : public Entity {
  public:
@@ -36,7 +49,7 @@ class BuiltEntity : public Entity {
   int dimension_ = 3;
   Eigen::AlignedBox3d box_;
   std::function<bool(const Eigen::Vector3d&)> inside_;
-  std::unique_ptr<SignedDistance> distance_;
+  std::optional<PlacedDistance> distance_;
   OrbitSolidPtr orbit_;
   std::vector<PatchPtr> faces_, edges_;
 
@@ -46,6 +59,9 @@ class BuiltEntity : public Entity {
   bool inside(const Eigen::Vector3d& p) const override { return inside_ && inside_(p); }
   bool has_distance_bound() const override { return bool(distance_); }
   double distance(const Eigen::Vector3d& p) const override { return (*distance_)(p); }
+  std::unique_ptr<SignedDistance> distance_bound() const override {
+    return distance_ ? std::make_unique<PlacedDistance>(*distance_) : nullptr;
+  }
   OrbitSolidPtr orbit_solid() const override { return orbit_; }
   const std::vector<PatchPtr>& faces() const override { return faces_; }
   const std::vector<PatchPtr>& edges() const override { return edges_; }

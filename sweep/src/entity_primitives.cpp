@@ -17,18 +17,6 @@ Vector3d circle_half_extent(const Vector3d& z, double rho) {
   return rho * (Vector3d::Ones() - z.cwiseAbs2()).cwiseMax(0.0).cwiseSqrt();
 }
 
-/// A distance given in the entity's own frame, carried by its placement (rigid: still 1-Lipschitz).
-class PlacedDistance : public SignedDistance {
- public:
-  PlacedDistance(const Eigen::Isometry3d& placement, std::function<double(const Vector3d&)> f)
-      : inverse_(placement.inverse()), f_(std::move(f)) {}
-  double operator()(const Vector3d& p) const override { return f_(inverse_ * p); }
-
- private:
-  Eigen::Isometry3d inverse_;
-  std::function<double(const Vector3d&)> f_;
-};
-
 /// The frame of the entity's own coordinates whose third column is `axis` (placed_frame's, unplaced).
 Eigen::Matrix3d local_frame(const Vector3d& axis) {
   const Frame f = placed_frame(Eigen::Isometry3d::Identity(), Vector3d::Zero(), axis);
@@ -44,9 +32,9 @@ std::shared_ptr<BuiltEntity> solid(const EntitySpec& e, std::function<double(con
   auto s = std::make_shared<BuiltEntity>();
   s->kind_ = e.kind;
   s->dimension_ = 3;
-  std::shared_ptr<const SignedDistance> sd = std::make_shared<PlacedDistance>(e.placement, local);
-  s->inside_ = [sd](const Vector3d& p) { return (*sd)(p) <= 0; };
-  s->distance_ = std::make_unique<PlacedDistance>(e.placement, std::move(local));
+  const PlacedDistance sd(e.placement, local);
+  s->inside_ = [sd](const Vector3d& p) { return sd(p) <= 0; };
+  s->distance_ = PlacedDistance(e.placement, std::move(local));
   if (orbit) s->orbit_ = e.placement.isApprox(Eigen::Isometry3d::Identity(), 0.0) ? orbit : orbit_placed(orbit, e.placement);
   return s;
 }
@@ -235,7 +223,7 @@ std::shared_ptr<BuiltEntity> make_elliptic_cylinder(const EntitySpec& e) {
     const double phi = e.twist_at(0.0);
     const Vector3d X = std::cos(phi) * F.col(0) + std::sin(phi) * F.col(1), Y = F.col(2).cross(X), Z = F.col(2);
     const Vector3d base = e.base;
-    s->distance_ = std::make_unique<PlacedDistance>(e.placement, [X, Y, Z, base, A, B, h](const Vector3d& p) {
+    s->distance_ = PlacedDistance(e.placement, [X, Y, Z, base, A, B, h](const Vector3d& p) {
       const Vector3d l = p - base;
       const double slab = std::abs(l.dot(Z) - 0.5 * h) - 0.5 * h;
       const double side = std::min(A, B) * (std::hypot(l.dot(X) / A, l.dot(Y) / B) - 1.0);

@@ -30,22 +30,11 @@ void push_halves(std::vector<SearchBox>& stack, SearchBox b, std::size_t k) {
   stack.push_back(std::move(b));
 }
 
-/// The distance bound of an entity, as a SignedDistance.
-class EntityDistance : public SignedDistance {
- public:
-  explicit EntityDistance(EntityPtr e) : e_(std::move(e)) {}
-  double operator()(const Vector3d& p) const override { return e_->distance(p); }
-
- private:
-  EntityPtr e_;
-};
-
 }  // namespace
 
 std::unique_ptr<SignedDistance> make_signed_distance(const EntitySpec& e) {
-  EntityPtr entity = make_entity(e);
-  if (!entity || !entity->has_distance_bound()) return nullptr;
-  return std::make_unique<EntityDistance>(std::move(entity));
+  const EntityPtr entity = make_entity(e);
+  return entity ? entity->distance_bound() : nullptr;
 }
 
 bool in_swept_set(const SignedDistance& sd, const Motion& motion, const Vector3d& x,

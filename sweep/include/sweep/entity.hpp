@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "sweep/membership.hpp"
 #include "sweep/orbit.hpp"
 #include "sweep/spec.hpp"
 
@@ -93,6 +94,8 @@ class Entity {
   /// is not called).
   virtual bool has_distance_bound() const = 0;
   virtual double distance(const Eigen::Vector3d& p) const = 0;
+  /// The same bound as a function object of its own (for the membership tests), or null.
+  virtual std::unique_ptr<SignedDistance> distance_bound() const = 0;
   /// The solid as orbit.hpp's exact orbit intersections take it (primitives), or null.
   virtual OrbitSolidPtr orbit_solid() const = 0;
   /// The boundary of a solid as faces (each with its outward orientation); a surface entity is its
