@@ -67,8 +67,9 @@ void stall_if_asked() {
 [[noreturn]] void run_worker(int out_fd, int err_fd, int argc, std::vector<std::string>& args,
                              const std::function<int(int, char**)>& command) {
   g_in_worker = true;
-  std::signal(SIGINT, SIG_DFL);
-  std::signal(SIGTERM, SIG_DFL);
+  // the supervisor's handlers are not the worker's; a signal the caller ignores stays ignored
+  for (int sig : {SIGINT, SIGTERM})
+    if (std::signal(sig, SIG_DFL) == SIG_IGN) std::signal(sig, SIG_IGN);
   if (dup2(out_fd, STDOUT_FILENO) < 0 || dup2(err_fd, STDERR_FILENO) < 0) _exit(1);
   close(out_fd);
   close(err_fd);
