@@ -361,4 +361,28 @@ def test_varieties_as_a_separate_object():
     FreeCAD.closeDocument(doc.Name)
 
 
+def test_time_limit_ends_a_recompute_that_never_polls():
+    import time
+    doc = new_doc("time_limit")
+    obj = sweep_freecad.make_sweep(doc, sphere_extrude_spec(2))
+    assert_ok(obj, 4 / 3 * PI + 2 * PI)
+    check(obj.TimeLimit == 0, obj.TimeLimit)  # 0: the default limit
+    obj.TimeLimit = 1
+    obj.RangeHi0 = 3
+    os.environ["SWEEP_TEST_WORKER_STALL"] = "30"  # the worker sleeps, ignoring stop signals
+    try:
+        start = time.monotonic()
+        doc.recompute()
+        took = time.monotonic() - start
+    finally:
+        del os.environ["SWEEP_TEST_WORKER_STALL"]
+    check(obj.Status == "failed", (obj.Status, obj.Message))
+    check("time limit of 1 s" in obj.Message, obj.Message)
+    check(took < 2.5, "the recompute took %.2f s for a limit of 1 s" % took)
+    obj.touch()
+    doc.recompute()  # no stall: computes again
+    assert_ok(obj, 4 / 3 * PI + 3 * PI)
+    FreeCAD.closeDocument(doc.Name)
+
+
 run(globals(), only=os.environ.get("SWEEP_TEST_ONLY", "").split(",") if os.environ.get("SWEEP_TEST_ONLY") else None)
