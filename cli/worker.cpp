@@ -10,6 +10,7 @@
 #include <limits>
 #include <thread>
 
+#include <fcntl.h>
 #include <poll.h>
 #include <sys/types.h>
 #include <sys/wait.h>
@@ -54,11 +55,13 @@ std::string signal_reason(int sig) {
   return "signal " + std::to_string(sig);
 }
 
-/// The test hook for a step that never polls: the worker ignores stop signals and sleeps for the
-/// seconds that SWEEP_TEST_WORKER_STALL gives before it starts the command.
+/// The test hook for a step that never polls: the worker says so on stderr (as a run's progress
+/// lines do), then ignores stop signals and sleeps for the seconds that SWEEP_TEST_WORKER_STALL
+/// gives before it starts the command.
 void stall_if_asked() {
   const char* stall = std::getenv("SWEEP_TEST_WORKER_STALL");
   if (!stall || !*stall) return;
+  std::cerr << "sweepvol: test hook: the worker stalls for " << stall << " s" << std::endl;
   std::signal(SIGINT, SIG_IGN);
   std::signal(SIGTERM, SIG_IGN);
   std::this_thread::sleep_for(std::chrono::duration<double>(std::atof(stall)));
@@ -219,6 +222,8 @@ int run_in_worker(int argc, char** argv, const WorkerPlan& plan, const std::func
     close(err_fds[0]);
     return command(argc, argv);
   }
+  // the supervisor reads what is there and goes back to its clock: a read must never wait
+  for (int fd : {out_fds[0], err_fds[0]}) fcntl(fd, F_SETFL, fcntl(fd, F_GETFL) | O_NONBLOCK);
   Stream out{out_fds[0], true, {}}, err{err_fds[0], true, {}};
   const Ending e = supervise(pid, out, err, plan, outputs);
   close(out_fds[0]);
