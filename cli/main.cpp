@@ -192,8 +192,7 @@ bool time_limit_of(int argc, char** argv, double& seconds) {
 
 /// What run, varieties and section print when their worker had to be ended: their failed report
 /// with the reason, also written to the report file of `run`.
-int report_ended(const std::string& cmd, const std::string& reason,
-                 const std::vector<std::pair<std::string, std::string>>& outputs) {
+int report_ended(const std::string& cmd, const std::string& reason, const std::vector<sweep::cli::Output>& outputs) {
   sweep::occt::Report report;
   report.status = "failed";
   report.message = reason;
@@ -209,8 +208,8 @@ int report_ended(const std::string& cmd, const std::string& reason,
   }
   const std::string text = out.dump(2) + "\n";
   std::cout << text;
-  for (const auto& [option, path] : outputs)
-    if (cmd == "run" && option == "--report") write_text_atomic(path, text);
+  for (const sweep::cli::Output& o : outputs)
+    if (cmd == "run" && o.option == "--report") write_text_atomic(o.path, text);
   std::cerr << "sweepvol: failed: " << reason << "\n";
   return 3;
 }
@@ -268,7 +267,7 @@ int main(int argc, char** argv) {
   else if (cmd == "section") plan.output_options = {"-o", "--svg"};
   else return dispatch(argc, argv);
   if (!time_limit_of(argc, argv, plan.time_limit)) return dispatch(argc, argv);
-  plan.on_ended = [&cmd](const std::string& reason, const std::vector<std::pair<std::string, std::string>>& outputs) {
+  plan.on_ended = [&cmd](const std::string& reason, const std::vector<sweep::cli::Output>& outputs) {
     return report_ended(cmd, reason, outputs);
   };
   return sweep::cli::run_in_worker(argc, argv, plan, dispatch);

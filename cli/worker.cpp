@@ -117,14 +117,14 @@ struct Stream {
 
 /// `text` with every temporary output name replaced by its final name (the worker's messages
 /// name the files the user gave).
-std::string with_final_names(std::string text, const std::vector<std::pair<std::string, std::string>>& outputs) {
-  for (const auto& [final_path, tmp] : outputs)
-    for (std::size_t at; (at = text.find(tmp)) != std::string::npos;) text.replace(at, tmp.size(), final_path);
+std::string with_final_names(std::string text, const std::vector<Output>& outputs) {
+  for (const Output& o : outputs)
+    for (std::size_t at; (at = text.find(o.temporary)) != std::string::npos;) text.replace(at, o.temporary.size(), o.path);
   return text;
 }
 
 /// Passes the complete lines of the worker's stderr on (all of it once `all`).
-void pass_on_stderr(Stream& err, const std::vector<std::pair<std::string, std::string>>& outputs, bool all) {
+void pass_on_stderr(Stream& err, const std::vector<Output>& outputs, bool all) {
   const std::size_t end = all ? err.text.size() : err.text.rfind('\n') + 1;  // npos + 1 == 0
   if (end == 0) return;
   std::cerr << with_final_names(err.text.substr(0, end), outputs);
@@ -136,7 +136,7 @@ void pass_on_stderr(Stream& err, const std::vector<std::pair<std::string, std::s
 /// the first stop signal and ending it when the grace period or the time limit runs out, or at a
 /// second signal.
 Ending supervise(pid_t pid, Stream& out, Stream& err, const WorkerPlan& plan,
-                 const std::vector<std::pair<std::string, std::string>>& outputs) {
+                 const std::vector<Output>& outputs) {
   const double start = now(), inf = std::numeric_limits<double>::infinity();
   const double deadline = plan.time_limit > 0 ? start + plan.time_limit + plan.grace : inf;
   double kill_at = inf;
@@ -189,12 +189,12 @@ bool stderr_is_terminal() { return g_in_worker ? g_stderr_terminal : isatty(STDE
 
 int run_in_worker(int argc, char** argv, const WorkerPlan& plan, const std::function<int(int, char**)>& command) {
   std::vector<std::string> args(argv, argv + argc);
-  std::vector<std::pair<std::string, std::string>> outputs;  // (final, temporary)
+  std::vector<Output> outputs;
   for (int i = 1; i + 1 < argc; ++i)
     for (const std::string& opt : plan.output_options)
       if (args[i] == opt) {
-        outputs.emplace_back(args[i + 1], temporary_beside(args[i + 1]));
-        args[++i] = outputs.back().second;
+        outputs.push_back({opt, args[i + 1], temporary_beside(args[i + 1])});
+        args[++i] = outputs.back().temporary;
         break;
       }
   int out_fds[2], err_fds[2];
@@ -229,24 +229,21 @@ int run_in_worker(int argc, char** argv, const WorkerPlan& plan, const std::func
   close(out_fds[0]);
   close(err_fds[0]);
   if (!e.killed && WIFEXITED(e.status)) {
-    for (const auto& [final_path, tmp] : outputs)
-      if (access(tmp.c_str(), F_OK) == 0 && std::rename(tmp.c_str(), final_path.c_str()) != 0) remove_temporary(tmp);
-    for (const auto& o : outputs) remove_temporary(o.second);
+    for (const Output& o : outputs)
+      if (access(o.temporary.c_str(), F_OK) == 0 && std::rename(o.temporary.c_str(), o.path.c_str()) != 0)
+        remove_temporary(o.temporary);
+    for (const Output& o : outputs) remove_temporary(o.temporary);
     std::cout << with_final_names(out.text, outputs);
     std::cout.flush();
     return WEXITSTATUS(e.status);
   }
-  for (const auto& o : outputs) remove_temporary(o.second);
+  for (const Output& o : outputs) remove_temporary(o.temporary);
   std::string reason = e.reason;
   if (!e.killed) {
     const int sig = WIFSIGNALED(e.status) ? WTERMSIG(e.status) : 0;
     reason = "the computation ended abnormally (" + std::string(sig ? strsignal(sig) : "unknown status") + ")";
   }
-  std::vector<std::pair<std::string, std::string>> finals;  // (option, final path)
-  for (int i = 1; i + 1 < argc; ++i)
-    for (const std::string& opt : plan.output_options)
-      if (argv[i] == opt) finals.emplace_back(opt, argv[i + 1]);
-  return plan.on_ended(reason, finals);
+  return plan.on_ended(reason, outputs);
 }
 
 }  // namespace sweep::cli

@@ -8,6 +8,12 @@
 
 namespace sweep::cli {
 
+/// An output file of a command: the option that names it, the path the user gave, and the
+/// temporary path beside it that the worker writes instead.
+struct Output {
+  std::string option, path, temporary;
+};
+
 /// How the supervisor runs one command.
 struct WorkerPlan {
   /// Options whose value is an output file ("-o", "--report", ...). The worker writes each to a
@@ -19,10 +25,8 @@ struct WorkerPlan {
   double time_limit = 0;
   double grace = 0.5;
   /// Writes what the command prints when the worker had to be ended (the reason: "stopped: ..."
-  /// or how the worker died), to stdout and to the final output paths it is given (option ->
-  /// final path). Returns the exit code.
-  std::function<int(const std::string& reason, const std::vector<std::pair<std::string, std::string>>& outputs)>
-      on_ended;
+  /// or how the worker died), to stdout and to the outputs' final paths. Returns the exit code.
+  std::function<int(const std::string& reason, const std::vector<Output>& outputs)> on_ended;
 };
 
 /// Runs `command(argc, argv)` in a forked worker (argv with output paths replaced by temporary
