@@ -48,6 +48,7 @@ class BuiltEntity : public Entity {
   EntityKind kind_ = EntityKind::Point;
   int dimension_ = 3;
   Eigen::AlignedBox3d box_;
+  /// The inside test when it is not the distance bound's sign (a twisted elliptic cylinder).
   std::function<bool(const Eigen::Vector3d&)> inside_;
   std::optional<PlacedDistance> distance_;
   OrbitSolidPtr orbit_;
@@ -56,7 +57,10 @@ class BuiltEntity : public Entity {
   EntityKind kind() const override { return kind_; }
   int dimension() const override { return dimension_; }
   Eigen::AlignedBox3d box() const override { return box_; }
-  bool inside(const Eigen::Vector3d& p) const override { return inside_ && inside_(p); }
+  bool inside(const Eigen::Vector3d& p) const override {
+    if (inside_) return inside_(p);
+    return distance_ && (*distance_)(p) <= 0;
+  }
   bool has_distance_bound() const override { return bool(distance_); }
   double distance(const Eigen::Vector3d& p) const override { return (*distance_)(p); }
   std::unique_ptr<SignedDistance> distance_bound() const override {

@@ -1,5 +1,6 @@
 // The primitive solids as entities: sphere, box, cylinder, cone, torus and elliptic cylinder, each
-// with exact boxes, faces and creased edges. Their distance bounds are membership.hpp's.
+// with exact boxes, faces and creased edges, a distance bound and (but the elliptic cylinder) an
+// orbit solid.
 #include <cmath>
 #include <string>
 
@@ -25,15 +26,13 @@ Eigen::Matrix3d local_frame(const Vector3d& axis) {
   return F;
 }
 
-/// A solid entity with the distance bound `local` (in its own frame) and, when it has one, the
-/// orbit solid `orbit` (in its own frame); its inside test is the bound's sign.
+/// A solid entity with the distance bound `local` (in its own frame; its sign is the inside test)
+/// and, when it has one, the orbit solid `orbit` (in its own frame).
 std::shared_ptr<BuiltEntity> solid(const EntitySpec& e, std::function<double(const Vector3d&)> local,
                                    OrbitSolidPtr orbit) {
   auto s = std::make_shared<BuiltEntity>();
   s->kind_ = e.kind;
   s->dimension_ = 3;
-  const PlacedDistance sd(e.placement, local);
-  s->inside_ = [sd](const Vector3d& p) { return sd(p) <= 0; };
   s->distance_ = PlacedDistance(e.placement, std::move(local));
   if (orbit) s->orbit_ = e.placement.isApprox(Eigen::Isometry3d::Identity(), 0.0) ? orbit : orbit_placed(orbit, e.placement);
   return s;
@@ -56,10 +55,9 @@ PatchForm form_of(PatchForm::Kind kind, const Frame& f, double radius = 0, doubl
 
 std::shared_ptr<BuiltEntity> make_sphere(const EntitySpec& e) {
   const Vector3d c = e.center;
-  const double radius = e.radius;
-  auto s = solid(e, [c, radius](const Vector3d& p) { return (p - c).norm() - radius; }, orbit_sphere(c, radius));
-  const Frame f = placed_frame(e.placement, e.center, Vector3d::UnitZ());
   const double r = e.radius;
+  auto s = solid(e, [c, r](const Vector3d& p) { return (p - c).norm() - r; }, orbit_sphere(c, r));
+  const Frame f = placed_frame(e.placement, c, Vector3d::UnitZ());
   s->box_ = Eigen::AlignedBox3d(f.o - Vector3d::Constant(r), f.o + Vector3d::Constant(r));
   s->faces_.push_back(revolved_face(
       f, [r](double v) { return Vector2d(r * std::cos(v), r * std::sin(v)); },

@@ -95,13 +95,14 @@ struct LimitIds {
 bool valid_and_closed(const TopoDS_Shape& s);
 
 /// A ball under a screw motion, built directly as a tube about its centre's helix closed by two
-/// half balls (trimmed where neighbouring turns overlap); null when `body` is not one ball or the
-/// build is not valid and closed. `faces` and `roles` (0 tube, 1 start, 2 end) describe it.
+/// half balls (trimmed where neighbouring turns overlap), or under a prismatic joint as a capsule;
+/// null for a revolute joint, a screw of pitch 0, a body that is not one ball, or a build that is
+/// not valid and closed. `faces` and `roles` (0 tube, 1 start, 2 end) describe it.
 TopoDS_Shape direct_ball_screw(const TopoDS_Shape& body, const ScrewJoint& j, double T, double fit_tol, double size,
                                double tol, double* fit_err, std::vector<TopoDS_Face>* faces, std::vector<int>* roles);
 
-/// A ball under a screw built directly (direct_ball_screw), its tube and end varieties in `cand`;
-/// null when the stage is not one or the build does not pass (`cand` unchanged).
+/// A ball under a screw or a prismatic joint built directly (direct_ball_screw), its tube and end
+/// varieties in `cand`; null when the stage is not one or the build does not pass (`cand` unchanged).
 TopoDS_Shape ball_screw_stage(const StageInput& in, double& fit_err, Candidates& cand);
 
 /// The stage built without an arrangement (a ball under a screw, a face translated along a

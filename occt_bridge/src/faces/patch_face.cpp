@@ -17,7 +17,6 @@
 #include <Geom_ToroidalSurface.hxx>
 #include <ShapeFix_Face.hxx>
 #include <Standard_Failure.hxx>
-#include <TColStd_Array1OfReal.hxx>
 #include <TColgp_Array1OfPnt.hxx>
 #include <TopoDS.hxx>
 #include <TopoDS_Edge.hxx>

@@ -9,7 +9,6 @@
 #include <TopExp_Explorer.hxx>
 #include <TopoDS.hxx>
 #include <gp_Ax1.hxx>
-#include <gp_Circ.hxx>
 
 #include "base/internal.hpp"
 

@@ -330,7 +330,7 @@ LimitIds stage_candidates(const StageInput& in, double& fit_err, Candidates& can
 
 TopoDS_Shape ball_screw_stage(const StageInput& in, double& fit_err, Candidates& cand) {
   const ScrewJoint& j = in.j;
-  if (in.dim != 3 || j.type == JointType::Revolute || (j.type == JointType::Helical && j.pitch == 0)) return {};
+  if (in.dim != 3) return {};  // direct_ball_screw says which joints and bodies it builds
   double err = fit_err;
   std::vector<TopoDS_Face> fs;
   std::vector<int> roles;
