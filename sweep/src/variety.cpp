@@ -125,17 +125,22 @@ GrazingSet grazing_set(const Patch& face, const StageMotion& motion, double t, i
   auto grid_point = [&](int i, int j) {
     return Vector2d(face.lo(0) + (face.hi(0) - face.lo(0)) * i / n, face.lo(1) + (face.hi(1) - face.lo(1)) * j / n);
   };
+  std::vector<double> g((n + 1) * (n + 1));
   double scale = 0;
   for (int i = 0; i <= n; ++i)
     for (int j = 0; j <= n; ++j) {
       const Vector2d s = grid_point(i, j);
-      scale = std::max(scale, std::abs(grazing_value(face, pose, s.x(), s.y())));
+      g[j * (n + 1) + i] = grazing_value(face, pose, s.x(), s.y());
+      scale = std::max(scale, std::abs(g[j * (n + 1) + i]));
     }
   if (!(scale > 0)) return out;  // the face does not move, or grazes everywhere
   find_vanishing_sides(face, pose, n, scale, out, field);
-  std::vector<double> g((n + 1) * (n + 1));
+  // on a side where g vanishes, its grid values are read just inside instead
   for (int i = 0; i <= n; ++i)
-    for (int j = 0; j <= n; ++j) g[j * (n + 1) + i] = field.at(grid_point(i, j));
+    for (int j = 0; j <= n; ++j)
+      if ((field.vanishing_[3] && i == 0) || (field.vanishing_[1] && i == n) || (field.vanishing_[0] && j == 0) ||
+          (field.vanishing_[2] && j == n))
+        g[j * (n + 1) + i] = field.at(grid_point(i, j));
   auto value = [&](int i, int j) { return g[j * (n + 1) + i]; };
   // crossings on grid edges: horizontal edge (i, j)-(i+1, j) has id j n + i, vertical edge
   // (i, j)-(i, j+1) has id H + i n + j
