@@ -2,6 +2,7 @@
 // on the entity kind.
 #include "sweep/entity.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "entity_internal.hpp"
@@ -27,6 +28,34 @@ Patch::Patch(int dim, std::vector<double> lo, std::vector<double> hi, Map map, P
              int orientation)
     : dim_(dim), lo_(std::move(lo)), hi_(std::move(hi)), map_(std::move(map)), form_(form), what_(std::move(what)),
       orientation_(orientation < 0 ? -1 : 1) {}
+
+Eigen::Vector3d side_point(const Patch& p, int side, double f) {
+  const double u = p.lo(0) + (p.hi(0) - p.lo(0)) * f, v = p.lo(1) + (p.hi(1) - p.lo(1)) * f;
+  switch (side) {
+    case 0: return p.eval(u, p.lo(1)).x;
+    case 1: return p.eval(p.hi(0), v).x;
+    case 2: return p.eval(p.hi(0) + p.lo(0) - u, p.hi(1)).x;
+    default: return p.eval(p.lo(0), p.hi(1) + p.lo(1) - v).x;
+  }
+}
+
+std::vector<int> bounding_sides(const Patch& p, double tol, int n) {
+  std::vector<Eigen::Vector3d> pts[4];
+  for (int k = 0; k < 4; ++k)
+    for (int i = 0; i <= n; ++i) pts[k].push_back(side_point(p, k, double(i) / n));
+  bool keep[4];
+  for (int k = 0; k < 4; ++k)
+    keep[k] = std::any_of(pts[k].begin(), pts[k].end(), [&](const Eigen::Vector3d& q) { return (q - pts[k][0]).norm() > tol; });
+  for (int k = 0; k < 2; ++k) {
+    bool meet = true;  // opposite sides, both counter-clockwise, run against each other
+    for (int i = 0; i <= n && meet; ++i) meet = (pts[k][i] - pts[k + 2][n - i]).norm() <= tol;
+    if (meet) keep[k] = keep[k + 2] = false;
+  }
+  std::vector<int> out;
+  for (int k = 0; k < 4; ++k)
+    if (keep[k]) out.push_back(k);
+  return out;
+}
 
 namespace entity_detail {
 

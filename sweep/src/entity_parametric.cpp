@@ -92,24 +92,7 @@ std::shared_ptr<BuiltEntity> make_parametric(const EntitySpec& e) {
   // sides that collapse (a pole) or that run back along their opposite side (a closed parameter)
   // are no edges
   const double tol = 1e-9 * std::max(1.0, s->box_.sizes().maxCoeff());
-  const int n = 64;
-  std::vector<PatchPtr> sides;
-  std::vector<std::vector<Vector3d>> points(4);
-  for (int k = 0; k < 4; ++k) {
-    sides.push_back(side_patch(pe, k));
-    for (int i = 0; i <= n; ++i)
-      points[k].push_back(sides[k]->eval(sides[k]->lo(0) + (sides[k]->hi(0) - sides[k]->lo(0)) * i / n).x);
-  }
-  std::vector<bool> keep(4, true);
-  for (int k = 0; k < 4; ++k)
-    keep[k] = std::any_of(points[k].begin(), points[k].end(), [&](const Vector3d& q) { return (q - points[k][0]).norm() > tol; });
-  for (int k = 0; k < 2; ++k) {
-    bool same = true;
-    for (int i = 0; i <= n && same; ++i) same = (points[k][i] - points[k + 2][i]).norm() <= tol;
-    if (keep[k] && keep[k + 2] && same) keep[k] = keep[k + 2] = false;
-  }
-  for (int k = 0; k < 4; ++k)
-    if (keep[k]) s->edges_.push_back(sides[k]);
+  for (int k : bounding_sides(*s->faces_[0], tol)) s->edges_.push_back(side_patch(pe, k));
   return s;
 }
 

@@ -51,30 +51,14 @@ Handle(Geom_Surface) form_surface(const PatchForm& f) {
   }
 }
 
-/// The sides of the patch's domain (0: v = lo, 1: u = hi, 2: v = hi, 3: u = lo), counter-clockwise,
-/// as points; collapsed sides and pairs that meet each other are left out.
+/// The sides that bound the patch (bounding_sides), counter-clockwise, as points.
 std::vector<std::vector<gp_Pnt>> boundary_sides(const Patch& p, double tol) {
   const int n = 64;
-  std::vector<std::vector<gp_Pnt>> sides(4);
-  for (int i = 0; i <= n; ++i) {
-    const double fu = double(i) / n;
-    const double u = p.lo(0) + (p.hi(0) - p.lo(0)) * fu, v = p.lo(1) + (p.hi(1) - p.lo(1)) * fu;
-    sides[0].push_back(to_pnt(p.eval(u, p.lo(1)).x));
-    sides[1].push_back(to_pnt(p.eval(p.hi(0), v).x));
-    sides[2].push_back(to_pnt(p.eval(p.hi(0) + p.lo(0) - u, p.hi(1)).x));
-    sides[3].push_back(to_pnt(p.eval(p.lo(0), p.hi(1) + p.lo(1) - v).x));
-  }
-  std::vector<bool> keep(4);
-  for (int k = 0; k < 4; ++k)
-    keep[k] = std::any_of(sides[k].begin(), sides[k].end(), [&](const gp_Pnt& q) { return q.Distance(sides[k][0]) > tol; });
-  for (int k = 0; k < 2; ++k) {
-    bool meet = true;  // opposite sides run against each other counter-clockwise
-    for (int i = 0; i <= n && meet; ++i) meet = sides[k][i].Distance(sides[k + 2][n - i]) <= tol;
-    if (meet) keep[k] = keep[k + 2] = false;
-  }
   std::vector<std::vector<gp_Pnt>> out;
-  for (int k = 0; k < 4; ++k)
-    if (keep[k]) out.push_back(sides[k]);
+  for (int k : bounding_sides(p, tol, n)) {
+    out.emplace_back();
+    for (int i = 0; i <= n; ++i) out.back().push_back(to_pnt(side_point(p, k, double(i) / n)));
+  }
   return out;
 }
 

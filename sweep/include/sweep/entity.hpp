@@ -78,6 +78,14 @@ class Patch {
 };
 using PatchPtr = std::shared_ptr<const Patch>;
 
+/// The point of side `side` of a two-parameter patch's domain (0: v = lo, 1: u = hi, 2: v = hi,
+/// 3: u = lo) at fraction f along it, the sides taken counter-clockwise.
+Eigen::Vector3d side_point(const Patch& p, int side, double f);
+/// The sides of a two-parameter patch's domain that bound it: neither collapsed to a point (a pole)
+/// nor running back along the opposite side (a closed parameter), judged on n + 1 points of each
+/// to within `tol`.
+std::vector<int> bounding_sides(const Patch& p, double tol, int n = 64);
+
 /// The entity of a spec, placement applied.
 class Entity {
  public:
