@@ -69,6 +69,27 @@ TEST_CASE("Stage motions: keyframes with screw interpolation give the solid of t
   CHECK(keys.volume_brep == Approx(1 + 20 * M_PI / 9).epsilon(1e-9));
 }
 
+TEST_CASE("Stage motions: keyframes whose segments are different screws give the union of their sweeps") {
+  // slid 2 along x then 2 along y: an L of two boxes, 3 + 3 - 1 (their common unit square)
+  const auto slides = run(R"({"sweep": 1, "entity": {"kind": "box", "min": [0, 0, 0], "max": [1, 1, 1]},
+      "motion": {"kind": "keyframes", "interpolation": "linear", "poses": [
+        {"t": 0}, {"t": 1, "translate": [2, 0, 0]}, {"t": 2, "translate": [2, 2, 0]}]}})");
+  CAPTURE(slides.to_json().dump());
+  REQUIRE(slides.ok());
+  CHECK(slides.volume_brep == Approx(5.0).epsilon(1e-9));
+  // a unit disk of height 1 at distance 3 turned 90 degrees about z, then slid 2 along z: the
+  // annular sector with its end disks (area 2 theta R r + pi r^2, height 1) and the last disk
+  // extruded 2 further
+  const auto turn_slide = run(R"({"sweep": 1, "angles": "deg",
+      "entity": {"kind": "cylinder", "base": [3, 0, 0], "axis": [0, 0, 1], "radius": 1, "height": 1},
+      "motion": {"kind": "keyframes", "interpolation": "screw", "poses": [
+        {"t": 0}, {"t": 1, "rotate": {"axis": [0, 0, 1], "angle": 90}},
+        {"t": 2, "translate": [0, 0, 2], "rotate": {"axis": [0, 0, 1], "angle": 90}}]}})");
+  CAPTURE(turn_slide.to_json().dump());
+  REQUIRE(turn_slide.ok());
+  CHECK(turn_slide.volume_brep == Approx(2 * (M_PI / 2) * 3 + M_PI + 2 * M_PI).epsilon(1e-7));
+}
+
 TEST_CASE("Stage motions: keyframes along a helix give the screw's solid within the tolerance", "[bench]") {
   const std::string entity = R"({"kind": "box", "min": [2, -0.5, 0], "max": [3, 0.5, 1]})";
   std::string poses;
@@ -159,15 +180,51 @@ TEST_CASE("Stage motions: the rotation minimising frame builds the same tube") {
   }
 }
 
+TEST_CASE("Stage motions: paths that are one screw are swept and judged as their screw") {
+  // a cylinder (r 0.5, h 2) slid 3 at 40 degrees to its axis, at a growing rate:
+  // pi r^2 h + |d| (pi r^2 cos a + 2 r h sin a)
+  const double a = 40 * M_PI / 180, r = 0.5, h = 2, d = 3;
+  const auto slide = run(R"({"sweep": 1, "entity": {"kind": "cylinder", "base": [0, 0, 0], "axis": [0, 0, 1],
+      "radius": 0.5, "height": 2}, "motion": {"kind": "path", "t": [0, 1],
+      "translate": ["3*sin(40*pi/180)*t^2", "0", "3*cos(40*pi/180)*t^2"]}})");
+  CAPTURE(slide.to_json().dump());
+  REQUIRE(slide.ok());
+  CHECK(slide.volume_brep == Approx(M_PI * r * r * h + d * (M_PI * r * r * std::cos(a) + 2 * r * h * std::sin(a))).epsilon(1e-9));
+  // a box turned 200 degrees about the vertical axis through (1, 0.5): x -> c + R (x - c)
+  const auto turn = run(R"J({"sweep": 1, "entity": {"kind": "box", "min": [2, -0.5, 0], "max": [3, 0.5, 1]},
+      "motion": {"kind": "path", "t": [0, 1],
+      "translate": ["1 - (cos(200*pi/180*t) - 0.5*sin(200*pi/180*t))", "0.5 - (sin(200*pi/180*t) + 0.5*cos(200*pi/180*t))", "0"],
+      "rotate": {"axis": [0, 0, 1], "angle": "200*pi/180*t"}}})J");
+  CAPTURE(turn.to_json().dump());
+  REQUIRE(turn.ok());
+  CHECK(turn.volume_brep == Approx(1 + 20 * M_PI / 9).epsilon(1e-9));
+  // a ball of radius 0.3 at distance 1 turned more than once round: the solid torus 2 pi^2 R r^2
+  const auto round = run(R"({"sweep": 1, "entity": {"kind": "sphere", "center": [1, 0, 0], "radius": 0.3},
+      "motion": {"kind": "path", "t": [0, 7], "translate": ["0", "0", "0"], "rotate": {"axis": [0, 0, 1], "angle": "t"}}})");
+  CAPTURE(round.to_json().dump());
+  REQUIRE(round.ok());
+  CHECK(round.volume_brep == Approx(2 * M_PI * M_PI * 0.09).epsilon(1e-9));
+  // a box on a helix: the helical joint's solid
+  const auto helix = run(R"({"sweep": 1, "entity": {"kind": "box", "min": [2, -0.5, 0], "max": [3, 0.5, 1]},
+      "motion": {"kind": "path", "t": [0, 1], "translate": ["0", "0", "2*t"], "rotate": {"axis": [0, 0, 1], "angle": "pi*t"}}})");
+  const auto joint = run(R"({"sweep": 1, "entity": {"kind": "box", "min": [2, -0.5, 0], "max": [3, 0.5, 1]},
+      "motion": {"kind": "screw", "point": [0, 0, 0], "direction": [0, 0, 1], "pitch": 4, "range": [0, 3.141592653589793]}})");
+  CAPTURE(helix.to_json().dump(), joint.to_json().dump());
+  REQUIRE(helix.ok());
+  REQUIRE(joint.ok());
+  CHECK(helix.volume_brep == Approx(joint.volume_brep).epsilon(1e-9));
+}
+
 TEST_CASE("Stage motions: what is not built yet or cannot be fails with its reason") {
   const auto cylinder = run(R"({"sweep": 1, "entity": {"kind": "cylinder", "base": [0, 0, -1], "axis": [0, 0, 1],
       "radius": 0.5, "height": 2}, "motion": {"kind": "path", "t": [0, 1], "translate": ["0", "4*t", "0"],
       "rotate": {"axis": [1, 0, 0], "angle": "pi*t"}}})");
   CHECK(cylinder.status == "failed");
   CHECK(cylinder.message.find("not supported yet") != std::string::npos);
-  // a ball on a circle of radius 1 once round: the path comes back onto itself
-  const auto round = run(R"({"sweep": 1, "entity": {"kind": "sphere", "center": [1, 0, 0], "radius": 0.3},
-      "motion": {"kind": "path", "t": [0, 7], "translate": ["0", "0", "0"], "rotate": {"axis": [0, 0, 1], "angle": "t"}}})");
+  // a ball on a circle of radius 1 once round (and a little up and down, so that the path is no
+  // screw): the path comes back onto itself
+  const auto round = run(R"J({"sweep": 1, "entity": {"kind": "sphere", "center": [1, 0, 0], "radius": 0.3},
+      "motion": {"kind": "path", "t": [0, 7], "translate": ["0", "0", "0.01*sin(t)"], "rotate": {"axis": [0, 0, 1], "angle": "t"}}})J");
   CHECK(round.status == "failed");
   CHECK(round.message.find("comes back within") != std::string::npos);
   // a path with a corner (abs) is refused rather than built as one smooth tube
@@ -176,8 +233,8 @@ TEST_CASE("Stage motions: what is not built yet or cannot be fails with its reas
   CHECK(corner.status == "failed");
   CHECK(corner.message.find("corner") != std::string::npos);
   // bending tighter than the radius
-  const auto tight = run(R"({"sweep": 1, "entity": {"kind": "sphere", "center": [0.5, 0, 0], "radius": 1},
-      "motion": {"kind": "path", "t": [0, 2], "translate": ["0", "0", "0"], "rotate": {"axis": [0, 0, 1], "angle": "t"}}})");
+  const auto tight = run(R"J({"sweep": 1, "entity": {"kind": "sphere", "center": [0.5, 0, 0], "radius": 1},
+      "motion": {"kind": "path", "t": [0, 2], "translate": ["0", "0", "0.01*sin(t)"], "rotate": {"axis": [0, 0, 1], "angle": "t"}}})J");
   CHECK(tight.status == "failed");
   CHECK(tight.message.find("bends tighter") != std::string::npos);
 }

@@ -91,6 +91,54 @@ TEST_CASE("Stage motions: screw keyframes reproduce the screw joint they sample"
   }
 }
 
+TEST_CASE("Stage motions: screw segments that continue one screw merge into it, others stay apart", "[stage_motion]") {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int trial = 0; trial < 20; ++trial) {
+    // keyframes sampled from one random screw (of each kind), then a second screw after the last pose
+    ScrewJoint j;
+    j.type = trial % 3 == 0 ? JointType::Prismatic : trial % 3 == 1 ? JointType::Revolute : JointType::Helical;
+    j.point = {u(rng), u(rng), u(rng)};
+    j.direction = Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized();
+    j.pitch = j.type == JointType::Helical ? u(rng) : 0.0;
+    j.lo = 0;
+    j.hi = 2.5;
+    const Eigen::Isometry3d home = random_pose(rng);
+    const ScrewStage exact(j, home);
+    std::vector<double> ts;
+    std::vector<Eigen::Isometry3d> poses;
+    for (int k = 0; k <= 8; ++k) {
+      ts.push_back(j.hi * k / 8.0);
+      poses.push_back(exact.transform(ts.back()));
+    }
+    ScrewJoint other = j;
+    other.direction = Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized();
+    ts.push_back(3.0);
+    poses.push_back(other.transform(0.4) * poses.back());
+    const KeyframeMotion keys(ts, poses, KeyframeMotion::Interpolation::Screw);
+    const auto segments = keys.screw_segments();
+    REQUIRE(segments);
+    REQUIRE(segments->size() == 9);
+    const auto merged = KeyframeMotion::merged(*segments, 5.0);
+    INFO("trial " << trial);
+    REQUIRE(merged.size() == 2);
+    const auto& m = merged.front();
+    CHECK(m.t0 == 0.0);
+    CHECK(m.t1 == 2.5);
+    // the merged segment moves the start pose as the screw does, over the whole range
+    for (double t : {0.0, 0.3, 1.7, 2.5}) {
+      const double q = (t - m.t0) / (m.t1 - m.t0) * (m.joint.hi - m.joint.lo);
+      const Eigen::Isometry3d a = m.joint.transform(m.joint.lo + q) * m.start, b = exact.transform(t);
+      CHECK((a.matrix() - b.matrix()).norm() < 1e-9);
+    }
+    CHECK(merged.back().t0 == 2.5);
+    // a segment that turns back the way it came does not continue the screw
+    std::vector<ScrewSegment> back_and_forth{segments->front(), segments->front()};
+    back_and_forth.back().start = segments->front().start;
+    CHECK(KeyframeMotion::merged(back_and_forth, 5.0).size() == 2);
+  }
+}
+
 TEST_CASE("Stage motions: linear keyframes move the origin on a segment and turn at one rate", "[stage_motion]") {
   std::mt19937 rng(7);
   std::vector<Eigen::Isometry3d> poses = {random_pose(rng), random_pose(rng), random_pose(rng)};
@@ -132,6 +180,95 @@ TEST_CASE("Stage motions: a path of expressions, rotations composed left to righ
   // an angle across a pole of tan has no finite bound
   const PathMotion pole(0, 2, tz, {PathRotation{{texpr("0"), texpr("0"), texpr("1")}, texpr("tan(t)")}});
   CHECK(std::isinf(pole.speed_bound(1.0)));
+}
+
+namespace {
+
+/// A screw stage seen only through its poses (so the default as_screw finds its screw), run at
+/// the rate q'(t) = 3 t^2 / (hi - lo)^2 over the joint's range.
+class EasedScrew : public StageMotion {
+ public:
+  explicit EasedScrew(const ScrewStage& s) : s_(s) {}
+  double lo() const override { return s_.lo(); }
+  double hi() const override { return s_.hi(); }
+  PoseJet pose(double t) const override {
+    const double L = hi() - lo(), f = (t - lo()) / L;
+    const double q = lo() + L * f * f * f, dq = 3 * f * f, ddq = 6 * f / L;
+    PoseJet P = s_.pose(q);
+    P.ddR = P.ddR * dq * dq + P.dR * ddq;
+    P.ddp = P.ddp * dq * dq + P.dp * ddq;
+    P.dR *= dq;
+    P.dp *= dq;
+    return P;
+  }
+  double speed_bound(double radius) const override { return 3 * s_.speed_bound(radius); }
+
+ private:
+  const ScrewStage& s_;
+};
+
+}  // namespace
+
+TEST_CASE("Stage motions: a motion that is one screw says so, with the range it covers", "[stage_motion]") {
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int trial = 0; trial < 30; ++trial) {
+    ScrewJoint j;
+    j.type = trial % 3 == 0 ? JointType::Prismatic : trial % 3 == 1 ? JointType::Revolute : JointType::Helical;
+    j.point = {u(rng), u(rng), u(rng)};
+    j.direction = Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized();
+    j.pitch = j.type == JointType::Helical ? u(rng) : 0.0;
+    j.lo = u(rng);
+    j.hi = j.lo + 0.2 + 7 * std::abs(u(rng));  // up to more than a whole turn
+    const ScrewStage stage(j, random_pose(rng));
+    const EasedScrew eased(stage);
+    for (const StageMotion* m : {static_cast<const StageMotion*>(&stage), static_cast<const StageMotion*>(&eased)}) {
+      INFO("trial " << trial << (m == &stage ? " (the stage)" : " (eased)"));
+      const auto s = m->as_screw(2.0);
+      REQUIRE(s);
+      CHECK(s->joint.type == j.type);
+      CHECK(s->joint.hi - s->joint.lo == Approx(j.hi - j.lo).epsilon(1e-9));
+      CHECK(std::abs(s->joint.direction.dot(j.direction)) == Approx(1.0).epsilon(1e-12));
+      CHECK(std::abs(s->joint.pitch - j.pitch) < 1e-9);
+      if (j.type != JointType::Prismatic) CHECK((s->joint.point - j.point).cross(j.direction).norm() < 1e-9);
+      CHECK(s->t0 == m->lo());
+      CHECK(s->t1 == m->hi());
+      // the ends of the range are the motion's first and last poses
+      CHECK((s->start.matrix() - m->transform(m->lo()).matrix()).norm() < 1e-9);
+      CHECK(((s->joint.transform(s->joint.hi) * s->start).matrix() - m->transform(m->hi()).matrix()).norm() < 1e-9);
+    }
+  }
+  // paths of expressions: a helix, a turn about a point off the origin at a growing rate, an eased slide
+  const Expr none[3] = {texpr("0"), texpr("0"), texpr("0")};
+  const PathRotation about_z{{texpr("0"), texpr("0"), texpr("1")}, texpr("4*pi*t")};
+  const Expr rise[3] = {texpr("0"), texpr("0"), texpr("6*t")};
+  const auto helix = PathMotion(0, 1, rise, {about_z}).as_screw(6.0);
+  REQUIRE(helix);
+  CHECK(helix->joint.type == JointType::Helical);
+  CHECK(helix->joint.hi == Approx(4 * M_PI).epsilon(1e-12));
+  CHECK(helix->joint.pitch == Approx(6 / (4 * M_PI)).epsilon(1e-9));
+  CHECK(helix->joint.point.head<2>().norm() < 1e-12);
+  // x -> c + R(t^2) (x - c) with c = (2, 1, 0): translate c - R c
+  const Expr off[3] = {texpr("2 - (2*cos(t^2) - sin(t^2))"), texpr("1 - (2*sin(t^2) + cos(t^2))"), texpr("0")};
+  const auto turn = PathMotion(0.5, 2, off, {PathRotation{{texpr("0"), texpr("0"), texpr("1")}, texpr("t^2")}}).as_screw(1.0);
+  REQUIRE(turn);
+  CHECK(turn->joint.type == JointType::Revolute);
+  CHECK(turn->joint.hi == Approx(4 - 0.25).epsilon(1e-9));
+  CHECK((turn->joint.point - Eigen::Vector3d(2, 1, 0)).head<2>().norm() < 1e-9);
+  const Expr slide[3] = {texpr("t^3"), texpr("2*t^3"), texpr("0")};
+  const auto line = PathMotion(0, 1, slide, {}).as_screw(1.0);
+  REQUIRE(line);
+  CHECK(line->joint.type == JointType::Prismatic);
+  CHECK(line->joint.hi == Approx(std::sqrt(5.0)).epsilon(1e-12));
+  CHECK((line->joint.direction - Eigen::Vector3d(1, 2, 0) / std::sqrt(5.0)).norm() < 1e-12);
+  // not one screw: seed 001's rolling cylinder, a turn that goes back, a circle without turning,
+  // and a path that stays
+  const Expr roll[3] = {texpr("0"), texpr("4*t"), texpr("0")};
+  CHECK(!PathMotion(0, 1, roll, {PathRotation{{texpr("1"), texpr("0"), texpr("0")}, texpr("pi*t")}}).as_screw(1.0));
+  CHECK(!PathMotion(0, 2, none, {PathRotation{{texpr("0"), texpr("0"), texpr("1")}, texpr("sin(3*t)")}}).as_screw(1.0));
+  const Expr circle[3] = {texpr("cos(t)"), texpr("sin(t)"), texpr("0")};
+  CHECK(!PathMotion(0, 2, circle, {}).as_screw(1.0));
+  CHECK(!PathMotion(0, 2, none, {}).as_screw(1.0));
 }
 
 TEST_CASE("Stage motions: speed bounds hold at sampled points and times", "[stage_motion]") {

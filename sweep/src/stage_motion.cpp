@@ -1,7 +1,9 @@
 #include "sweep/stage_motion.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "sweep/error.hpp"
 #include "sweep/interval.hpp"
@@ -73,6 +75,101 @@ double distance_to_axis(const Eigen::Vector3d& x, const Eigen::Vector3d& c, cons
 
 }  // namespace
 
+namespace {
+
+/// The screw of one twist, the rate along it 1: a turn about the axis through `point` with `pitch`,
+/// or a slide along v when the twist does not turn.
+ScrewJoint screw_of(const Twist& tw) {
+  ScrewJoint j;
+  const double w = tw.omega.norm();
+  if (w == 0) {
+    j.type = JointType::Prismatic;
+    j.direction = tw.v.normalized();
+    return j;
+  }
+  j.direction = tw.omega / w;
+  j.point = tw.omega.cross(tw.v) / (w * w);
+  j.pitch = tw.omega.dot(tw.v) / (w * w);
+  j.type = JointType::Helical;
+  return j;
+}
+
+/// The angle about unit w that rotation R turns a vector normal to w by.
+double angle_about(const Eigen::Matrix3d& R, const Eigen::Vector3d& w) {
+  const Eigen::Vector3d e = w.unitOrthogonal(), f = R * e;
+  return std::atan2(w.dot(e.cross(f)), e.dot(f));
+}
+
+}  // namespace
+
+std::optional<ScrewSegment> StageMotion::as_screw(double radius) const {
+  constexpr int n = 1024;
+  const double a = lo(), b = hi();
+  if (!(b > a)) return std::nullopt;
+  std::vector<double> ts(n + 1);
+  std::vector<Eigen::Isometry3d> M(n + 1);
+  std::vector<Twist> tw(n + 1);
+  double reach = std::max(radius, 0.0), wmax = 0, vmax = 0;
+  int kw = 0, kv = 0;
+  for (int i = 0; i <= n; ++i) {
+    ts[i] = a + (b - a) * i / n;
+    M[i] = transform(ts[i]);
+    tw[i] = twist(ts[i]);
+    reach = std::max(reach, radius + M[i].translation().norm());
+    if (tw[i].omega.norm() > wmax) wmax = tw[i].omega.norm(), kw = i;
+    if (tw[i].v.norm() > vmax) vmax = tw[i].v.norm(), kv = i;
+  }
+  if (!std::isfinite(reach) || !(wmax * reach + vmax > 0)) return std::nullopt;  // no motion
+  // the screw of the fastest turning twist (or of the fastest slide when none turns), rate 1
+  const bool turns = wmax * reach > 1e-12 * vmax;
+  ScrewJoint j = screw_of(turns ? tw[kw] : Twist{Eigen::Vector3d::Zero(), tw[kv].v});
+  const Twist unit{turns ? j.direction : Eigen::Vector3d::Zero(),
+                   turns ? Eigen::Vector3d(j.point.cross(j.direction) + j.pitch * j.direction) : j.direction};
+  const double speed = wmax * reach + vmax;
+  // each twist is that screw's at some rate r, of one sign; q is its value, from the poses
+  std::vector<double> q(n + 1, 0.0);
+  double r_min = 0, r_max = 0;
+  for (int i = 0; i <= n; ++i) {
+    const double r = turns ? tw[i].omega.dot(unit.omega) : tw[i].v.dot(unit.v);
+    if ((tw[i].omega - r * unit.omega).norm() * reach + (tw[i].v - r * unit.v).norm() > 1e-9 * speed)
+      return std::nullopt;
+    r_min = std::min(r_min, r), r_max = std::max(r_max, r);
+    if (i == 0) continue;
+    if (turns) {
+      const double d = std::remainder(angle_about(M[i].linear() * M[0].linear().transpose(), j.direction) -
+                                          angle_about(M[i - 1].linear() * M[0].linear().transpose(), j.direction),
+                                      2 * M_PI);
+      // the step agrees with the rates, so the angle was unwrapped on the right turn
+      if (std::abs(d - 0.5 * (r + (tw[i - 1].omega.dot(unit.omega))) * (ts[i] - ts[i - 1])) > M_PI / 4)
+        return std::nullopt;
+      q[i] = q[i - 1] + d;
+    } else {
+      q[i] = (M[i].translation() - M[0].translation()).dot(j.direction);
+    }
+  }
+  if (r_min < -1e-12 * std::abs(r_max) && r_max > 1e-12 * std::abs(r_min)) return std::nullopt;  // turns back
+  double range = q[n];
+  if (range < 0) {  // the same screw the other way round
+    j.direction = -j.direction;
+    range = -range;
+    for (double& qi : q) qi = -qi;
+  }
+  if (!(range > 0)) return std::nullopt;
+  if (turns && std::abs(j.pitch) * 2 * M_PI <= 1e-12 * reach) {
+    j.pitch = 0;
+    j.type = JointType::Revolute;
+  }
+  j.lo = 0;
+  j.hi = range;
+  // the screw's pose at every sample moves the body's points as the motion does
+  for (int i = 0; i <= n; ++i) {
+    const Eigen::Isometry3d S = j.transform(q[i]) * M[0];
+    if ((S.linear() - M[i].linear()).norm() * radius + (S.translation() - M[i].translation()).norm() > 1e-10 * reach)
+      return std::nullopt;
+  }
+  return ScrewSegment{j, M[0], a, b};
+}
+
 Eigen::Isometry3d StageMotion::transform(double t) const {
   const PoseJet P = pose(t);
   Eigen::Isometry3d M = Eigen::Isometry3d::Identity();
@@ -112,6 +209,18 @@ PoseJet ScrewStage::pose(double t) const {
   P.dp = joint_.velocity(P.p);
   P.ddp = joint_.direction.cross(P.dp);
   return P;
+}
+
+std::optional<ScrewSegment> ScrewStage::as_screw(double) const {
+  if (!(joint_.hi > joint_.lo)) return std::nullopt;
+  ScrewSegment s;
+  s.joint = joint_;
+  s.joint.lo = 0;
+  s.joint.hi = joint_.hi - joint_.lo;
+  s.start = joint_.transform(joint_.lo) * home_;
+  s.t0 = joint_.lo;
+  s.t1 = joint_.hi;
+  return s;
 }
 
 double ScrewStage::speed_bound(double radius) const {
@@ -271,6 +380,16 @@ PoseJet KeyframeMotion::pose(double t) const {
   return P;
 }
 
+std::optional<ScrewSegment> KeyframeMotion::as_screw(double radius) const {
+  const auto segments = screw_segments();
+  if (!segments || segments->empty()) return std::nullopt;
+  double reach = std::max(radius, 0.0);
+  for (const auto& P : poses_) reach = std::max(reach, radius + P.translation().norm());
+  const auto one = merged(*segments, reach);
+  if (one.size() != 1) return std::nullopt;
+  return one.front();
+}
+
 double KeyframeMotion::speed_bound(double radius) const {
   double bound = 0;
   for (std::size_t k = 0; k < segments_.size(); ++k) {
@@ -285,7 +404,7 @@ double KeyframeMotion::speed_bound(double radius) const {
   return bound;
 }
 
-std::optional<std::vector<KeyframeMotion::ScrewSegment>> KeyframeMotion::screw_segments() const {
+std::optional<std::vector<ScrewSegment>> KeyframeMotion::screw_segments() const {
   std::vector<ScrewSegment> out;
   for (std::size_t k = 0; k < segments_.size(); ++k) {
     const Segment& s = segments_[k];
@@ -316,6 +435,39 @@ std::optional<std::vector<KeyframeMotion::ScrewSegment>> KeyframeMotion::screw_s
       seg.joint.hi = length;
     }
     out.push_back(seg);
+  }
+  return out;
+}
+
+namespace {
+
+/// Whether segment b continues the screw of segment a (see KeyframeMotion::merged).
+bool continues(const ScrewSegment& a, const ScrewSegment& b, double scale) {
+  const ScrewJoint &ja = a.joint, &jb = b.joint;
+  const double eps = 1e-12 * std::max(scale, 1e-300);
+  // (a revolute joint and a helical one of pitch 0 to rounding are one screw)
+  if (ja.is_rotation() != jb.is_rotation() || (ja.direction - jb.direction).norm() > 1e-12) return false;
+  if (ja.type != JointType::Prismatic) {
+    if (std::abs(ja.pitch - jb.pitch) > eps || (jb.point - ja.point).cross(ja.direction).norm() > eps) return false;
+  }
+  // b starts where a ends: the two poses move every point of the model's size alike
+  const Eigen::Isometry3d end = ja.transform(ja.hi) * a.start;
+  return (end.translation() - b.start.translation()).norm() <= eps &&
+         (end.linear() - b.start.linear()).norm() * scale <= eps;
+}
+
+}  // namespace
+
+std::vector<ScrewSegment> KeyframeMotion::merged(const std::vector<ScrewSegment>& segments,
+                                                                 double scale) {
+  std::vector<ScrewSegment> out;
+  for (const ScrewSegment& s : segments) {
+    if (!out.empty() && continues(out.back(), s, scale)) {
+      out.back().joint.hi += s.joint.hi - s.joint.lo;
+      out.back().t1 = s.t1;
+    } else {
+      out.push_back(s);
+    }
   }
   return out;
 }

@@ -5,6 +5,7 @@
 
 #include <Eigen/Geometry>
 #include <TopoDS_Shape.hxx>
+#include <functional>
 #include <string>
 
 #include "base/internal.hpp"
@@ -16,6 +17,41 @@ namespace sweep::occt {
 
 /// The sweep of a spec whose motion is a one-parameter stage motion (`path`, `keyframes`).
 RunResult run_stage_motion_sweep(const Spec& spec, const RunOptions& opt);
+
+/// The largest side of the shape's box.
+double extent(const TopoDS_Shape& s);
+/// The model size: the extent of the entity's box corners carried by the motion sampled at the
+/// ends and middles of the joint ranges (a point entity has no extent of its own).
+double model_size(const TopoDS_Shape& raw, const Motion& motion);
+
+/// The entity as the stages of a chain take it: its spec, its shape before the motion's home pose
+/// (parametric entities fitted within fit_tol), its signed distance (or null), the model size and
+/// the tolerances.
+struct ChainEntity {
+  const EntitySpec& spec;
+  TopoDS_Shape raw;
+  const SignedDistance* sd;
+  double size, tol, fit_tol;
+};
+
+/// What the stages of a chain built: the swept set (a solid when `dim` is 3), the entity's shape
+/// the last stages swept (`raw`, extended where a joint slid it along itself), the last solid
+/// stage's candidates, and the rebuild of that stage from every candidate when pruning left some
+/// out (empty otherwise, and always for a chain that is not judged on its own).
+struct ChainSweep {
+  TopoDS_Shape shape;
+  int dim = 0;
+  TopoDS_Shape raw;
+  Candidates last_cands;
+  std::function<TopoDS_Shape(Candidates*)> redo_last;
+};
+
+/// The stages of `motion`, innermost joint first, each sweeping the set the previous one built.
+/// A chain that is `judged` leaves its last stage for the final checks (and `redo_last`); one that
+/// is not (a segment of a longer motion) checks it like every other stage, rebuilding it from every
+/// candidate when the check fails. Fit errors go to `fit_err`, counts and timings to `rep`.
+ChainSweep sweep_chain(const ChainEntity& entity, const Motion& motion, bool judged, const RunOptions& opt,
+                       double& fit_err, Report& rep, const std::function<void(const std::string&)>& step);
 
 /// The trajectory of a point under one joint as an edge (the sweep of a point).
 TopoDS_Shape point_sweep(const TopoDS_Shape& body, const ScrewJoint& j, double T, double tol, double size);

@@ -1,11 +1,12 @@
 // Sweeps under one-parameter motions that are not chains of screws (SPEC.md `path`, `keyframes`).
-// Keyframes with screw interpolation, and linear ones whose segments only slide or turn, are a
-// sequence of screw segments: each segment is the one-joint sweep of the entity at its start pose
-// (the engine of run_sweep), and the set is their union, judged by the union of the segments' own
-// independent memberships. Under a general motion
-// a ball sweeps the tube about its centre's path (varieties/ball_path.cpp), judged by a branch and
-// bound over t (sweep/stage_membership.hpp); a point sweeps its fitted path and a curve a fitted
-// surface; other entities under general motions are not built yet and fail with that reason.
+// Keyframes with screw interpolation, linear ones whose segments only slide or turn, and any
+// motion that is one screw (StageMotion::as_screw: a straight path, a turn about a fixed axis, a
+// helix, at any monotone rate) are sequences of screw segments: each segment is the one-joint
+// sweep of the entity at its start pose (the stages of run_sweep), and the set is their union,
+// judged once. Under a general motion a ball sweeps the tube about its centre's path
+// (varieties/ball_path.cpp), judged by a branch and bound over t (sweep/stage_membership.hpp); a
+// point sweeps its fitted path and a curve a fitted surface; other entities under general motions
+// are not built yet and fail with that reason.
 #include <BRepAlgoAPI_Fuse.hxx>
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
@@ -28,6 +29,7 @@
 #include "base/internal.hpp"
 #include "base/stop.hpp"
 #include "run/run_steps.hpp"
+#include "sweep/entity.hpp"
 #include "sweep/error.hpp"
 #include "sweep/stage_membership.hpp"
 #include "sweep/swept_box.hpp"
@@ -43,6 +45,20 @@ Eigen::AlignedBox3d box_of(const TopoDS_Shape& s) {
   double x0, y0, z0, x1, y1, z1;
   b.Get(x0, y0, z0, x1, y1, z1);
   return Eigen::AlignedBox3d(Eigen::Vector3d(x0, y0, z0), Eigen::Vector3d(x1, y1, z1));
+}
+
+/// The largest distance from the origin of a point of the entity's box.
+double entity_radius(const EntitySpec& e) {
+  Eigen::AlignedBox3d box;
+  if (const EntityPtr entity = make_entity(e)) {
+    box = entity->box();
+  } else {
+    double fit_err = 0;
+    box = box_of(entity_shape(e, 1e-9, &fit_err));
+  }
+  double r = 0;
+  for (int k = 0; k < 8; ++k) r = std::max(r, box.corner(Eigen::AlignedBox3d::CornerType(k)).norm());
+  return r;
 }
 
 /// The model size: the entity's extent and the box of its corners at sampled poses.
@@ -74,6 +90,21 @@ IndependentMembership union_of(const std::vector<IndependentMembership>& parts) 
             };
           },
           "union over the segments of: " + parts.front().name};
+}
+
+/// Membership in the sweep of a solid with a signed distance under `m`, by a search over t that
+/// never looks at a computed solid.
+IndependentMembership search_over_t(const std::shared_ptr<const SignedDistance>& sd, const StageMotion& m, double size,
+                                    const Settings& settings) {
+  const StageMotion* motion = &m;
+  const double resolution = 1e-9 * size;
+  const std::size_t budget = settings.membership_budget;
+  const bool certified = std::isfinite(m.speed_bound(1.0));
+  return {[sd, motion, resolution, budget]() -> MemberTest {
+            auto set = std::make_shared<StageSweptSet>(*sd, *motion, resolution, budget);
+            return [set](const Eigen::Vector3d& x) { return (*set)(x); };
+          },
+          std::string("search over t (signed distance, ") + (certified ? "certified" : "sampled") + " speed bound)"};
 }
 
 /// The checks of a solid result, the Monte Carlo volume of --verify by `member`, the verdict.
@@ -134,52 +165,61 @@ TopoDS_Shape fused(const std::vector<TopoDS_Shape>& parts, double size) {
   return s;
 }
 
-/// Keyframes whose segments are screw motions: the union of the segments' screw sweeps.
-void keyframe_screw_sweep(const Spec& spec, const KeyframeMotion& km, const std::vector<KeyframeMotion::ScrewSegment>& segments,
+/// A motion made of screw segments (keyframes, or a path that is one screw): the union of the
+/// segments' screw sweeps, each built by the stages of a one-joint chain, judged once as a whole.
+/// Segments that continue one screw are swept as one. The judge is the union of the segments' own
+/// independent memberships (exact for each screw; the segments come from the input motion alone).
+void screw_segments_sweep(const Spec& spec, const StageMotion& m, const std::vector<ScrewSegment>& screw_segments,
                           const RunOptions& opt, RunResult& res) {
   Report& rep = res.report;
-  if (segments.empty()) throw ComputeError("the poses never move the entity: nothing is swept");
+  if (screw_segments.empty()) throw ComputeError("the poses never move the entity: nothing is swept");
+  const auto t_start = Clock::now();
   double fit_err = 0;
-  const TopoDS_Shape raw = entity_shape(spec.entity, 1e-9, &fit_err);
-  const double size = stage_model_size(raw, km);
+  // parametric curves and surfaces are fitted once the tolerance is known (as in run_sweep)
+  const bool parametric = spec.entity.kind == EntityKind::Curve || spec.entity.kind == EntityKind::Surface;
+  TopoDS_Shape raw = parametric ? sampled_points(spec.entity) : entity_shape(spec.entity, 1e-9, &fit_err);
+  const double size = stage_model_size(raw, m);
   rep.tol_requested = spec.tolerance > 0 ? spec.tolerance : 1e-6 * size;
-  const double tol = rep.tol_requested;
+  const double tol = rep.tol_requested, fit_tol = 0.01 * tol;
+  if (parametric) raw = entity_shape(spec.entity, fit_tol, &fit_err);
+  const std::shared_ptr<const SignedDistance> sd(make_signed_distance(spec.entity));
+  const std::unique_ptr<ParametricEntity> pe = ParametricEntity::make(spec.entity);
+  const Eigen::AlignedBox3d entity_box = box_of(raw);
+  rep.seconds["entity"] = since(t_start);
+  const auto segments = KeyframeMotion::merged(screw_segments, size);
+  RunOptions chain_opt = opt;  // the segments' candidates are not reported
+  chain_opt.varieties = nullptr;
+  chain_opt.variety_faces = nullptr;
+  chain_opt.variety_face_ids = nullptr;
   std::vector<TopoDS_Shape> parts;
   std::vector<IndependentMembership> members;
   Eigen::AlignedBox3d true_box;
-  const std::unique_ptr<SignedDistance> sd = make_signed_distance(spec.entity);
-  const std::unique_ptr<ParametricEntity> pe = ParametricEntity::make(spec.entity);
-  const Eigen::AlignedBox3d entity_box = box_of(raw);
   int dim = 0;
   for (std::size_t k = 0; k < segments.size(); ++k) {
     const auto& seg = segments[k];
     const std::string name = "segment " + std::to_string(k + 1) + "/" + std::to_string(segments.size()) +
                              " (t in [" + std::to_string(seg.t0) + ", " + std::to_string(seg.t1) + "])";
-    Spec sub = spec;
-    sub.motion = MotionSpec();
-    sub.motion.kind = MotionKind::Screw;
-    sub.motion.motion.joints = {seg.joint};
-    sub.motion.motion.home = seg.start;
-    sub.tolerance = tol;
-    RunOptions so = opt;
-    so.verify = false;
-    so.varieties = nullptr;
-    so.variety_faces = nullptr;
-    so.variety_face_ids = nullptr;
-    if (opt.progress) so.progress = [&opt, name](const std::string& what) { opt.progress(name + ": " + what); };
-    const RunResult r = run_sweep(sub, so);
-    if (!r.report.ok() || !r.shape) throw ComputeError(name + ": " + r.report.message);
-    parts.push_back(r.shape->shape);
-    fit_err = std::max(fit_err, r.report.tol_achieved);
-    dim = r.report.dimension;
-    rep.varieties += r.report.varieties;
-    rep.cells += r.report.cells;
-    for (auto it = r.report.seconds.begin(); it != r.report.seconds.end(); ++it)
-      if (it.value().is_number()) rep.seconds[it.key()] = rep.seconds.value(it.key(), 0.0) + it.value().get<double>();
+    const auto step = [&opt, &name](const std::string& what) {
+      check_stop();
+      if (opt.progress) opt.progress(name + ": " + what);
+    };
+    Motion motion;
+    motion.joints = {seg.joint};
+    motion.home = seg.start;
+    try {
+      const ChainSweep chain = sweep_chain({spec.entity, raw, sd.get(), size, tol, fit_tol}, motion, false, chain_opt,
+                                           fit_err, rep, step);
+      parts.push_back(chain.shape);
+      dim = chain.dim;
+    } catch (const ComputeError& e) {
+      throw ComputeError(name + ": " + e.what());
+    }
     if (dim == 3) {
-      members.push_back(independent_membership(spec.entity, sub.motion.motion, raw, sd.get(), pe.get(), size, opt.settings));
+      Motion clipped = motion;  // a revolute joint beyond a whole turn covers nothing new
+      if (seg.joint.type == JointType::Revolute) clipped.joints[0].hi = std::min(seg.joint.hi, seg.joint.lo + 2 * M_PI);
+      members.push_back(independent_membership(spec.entity, clipped, raw, sd.get(), pe.get(), size, opt.settings));
       if (!members.back().test) throw ComputeError(name + ": no membership test independent of the solid exists");
-      true_box.extend(swept_box(entity_box, sub.motion.motion));
+      true_box.extend(swept_box(entity_box, clipped));
     }
   }
   rep.dimension = dim;
@@ -191,8 +231,10 @@ void keyframe_screw_sweep(const Spec& spec, const KeyframeMotion& km, const std:
     res.shape = std::make_shared<Shape>(finish_curve_or_surface(comp, dim, size, fit_err, opt.verify, rep));
     return;
   }
-  if (opt.progress) opt.progress("the union of " + std::to_string(parts.size()) + " segments");
+  if (parts.size() > 1 && opt.progress) opt.progress("the union of " + std::to_string(parts.size()) + " segments");
+  const auto t_union = Clock::now();
   const TopoDS_Shape result = fused(parts, size);
+  if (parts.size() > 1) rep.seconds["union"] = since(t_union);
   const IndependentMembership member = union_of(members);
   FinalChecks check(rep, member, true_box, tol, size, fit_err, opt.settings, "");
   finish_solid(result, check, member.test, size, tol, opt, res);
@@ -223,17 +265,8 @@ void ball_stage_sweep(const Spec& spec, const StageMotion& m, const std::vector<
   rep.seconds["stages"] = since(t_build);
   rep.varieties = 3 * int(pieces.size());
   rep.cells = int(pieces.size());
-  const std::shared_ptr<const SignedDistance> sd(make_signed_distance(spec.entity));
-  const StageMotion* motion = &m;
-  const double resolution = 1e-9 * size;
-  const std::size_t budget = opt.settings.membership_budget;
-  const bool certified = std::isfinite(m.speed_bound(1.0));
-  const IndependentMembership member{
-      [sd, motion, resolution, budget]() -> MemberTest {
-        auto set = std::make_shared<StageSweptSet>(*sd, *motion, resolution, budget);
-        return [set](const Eigen::Vector3d& x) { return (*set)(x); };
-      },
-      std::string("search over t (signed distance, ") + (certified ? "certified" : "sampled") + " speed bound)"};
+  const IndependentMembership member =
+      search_over_t(std::shared_ptr<const SignedDistance>(make_signed_distance(spec.entity)), m, size, opt.settings);
   FinalChecks check(rep, member, stage_swept_box(box_of(raw), m), tol, size, fit_err, opt.settings, "");
   finish_solid(solid, check, member.test, size, tol, opt, res);
 }
@@ -310,13 +343,16 @@ RunResult run_stage_motion_sweep(const Spec& spec, const RunOptions& opt) {
     OCC_CATCH_SIGNALS
     const auto* km = dynamic_cast<const KeyframeMotion*>(&m);
     auto segments = km ? km->screw_segments() : std::nullopt;
+    // any other motion that is one screw goes to the screw engine
+    const std::optional<ScrewSegment> screw = km ? std::nullopt : m.as_screw(entity_radius(spec.entity));
+    if (screw) segments = std::vector<ScrewSegment>{*screw};
     // a ball slid along a line is a tube about its centre's path too (and the one-joint engine
     // stalls on a ball slid along the normal of its surface's seam plane)
     if (segments && spec.entity.kind == EntityKind::Sphere)
       for (const auto& seg : *segments)
         if (seg.joint.type == JointType::Prismatic) segments.reset();
     if (segments) {
-      keyframe_screw_sweep(spec, *km, *segments, opt, res);
+      screw_segments_sweep(spec, m, *segments, opt, res);
     } else if (spec.entity.kind == EntityKind::Sphere || spec.entity.dimension() <= 1) {
       // linear keyframes that are not screws turn at the poses: one smooth piece per segment
       std::vector<std::unique_ptr<KeyframeMotion>> segments;
@@ -339,7 +375,7 @@ RunResult run_stage_motion_sweep(const Spec& spec, const RunOptions& opt) {
       throw ComputeError(std::string("a ") + to_string(spec.entity.kind) + " entity under a " +
                          to_string(spec.motion.kind) +
                          " motion that is not a sequence of screws is not supported yet (points, curves and balls are; "
-                         "keyframes whose segments are screws take every entity)");
+                         "keyframes whose segments are screws and paths that are one screw take every entity)");
     }
   } catch (const InputError&) {
     throw;

@@ -29,6 +29,15 @@ struct Twist {
   Eigen::Vector3d at(const Eigen::Vector3d& x) const { return omega.cross(x) + v; }
 };
 
+/// A piece of a motion that is one screw joint: the body at `start` (the pose at t0) moved by
+/// joint.transform(q) for q in [0, joint.hi] is the motion over [t0, t1] (q need not be
+/// proportional to t).
+struct ScrewSegment {
+  ScrewJoint joint;
+  Eigen::Isometry3d start = Eigen::Isometry3d::Identity();
+  double t0 = 0, t1 = 0;
+};
+
 class StageMotion {
  public:
   virtual ~StageMotion() = default;
@@ -39,6 +48,13 @@ class StageMotion {
   /// An upper bound on |d/dt M(t) y| over t in [lo, hi] and body points |y| <= radius; infinite
   /// when the kind has no certified bound.
   virtual double speed_bound(double radius) const = 0;
+
+  /// The motion as one screw joint that moves the pose at lo() monotonically, when it is one (the
+  /// closed forms of the screw engine then apply); none otherwise, or when it does not move.
+  /// `radius`: the body lies within it of the origin. The default finds the screw from the
+  /// twists at 1025 sampled t (the same axis and pitch at each, the rate of one sign) and checks
+  /// that the screw's pose at every sample moves points within `radius` to 1e-10 of the reach.
+  virtual std::optional<ScrewSegment> as_screw(double radius) const;
 
   Eigen::Isometry3d transform(double t) const;
   /// The velocity field at t: omega from dR R^T, v = dp - omega x p.
@@ -55,6 +71,8 @@ class ScrewStage : public StageMotion {
   double hi() const override { return joint_.hi; }
   PoseJet pose(double t) const override;
   double speed_bound(double radius) const override;
+  /// Itself: the joint over [0, hi - lo] from the pose at lo.
+  std::optional<ScrewSegment> as_screw(double radius) const override;
   const ScrewJoint& joint() const { return joint_; }
 
  private:
@@ -109,21 +127,20 @@ class KeyframeMotion : public StageMotion {
   double hi() const override { return times_.back(); }
   PoseJet pose(double t) const override;
   double speed_bound(double radius) const override;
+  /// The one screw its merged screw segments make, when they make one.
+  std::optional<ScrewSegment> as_screw(double radius) const override;
   Interpolation interpolation() const { return interpolation_; }
   const std::vector<double>& times() const { return times_; }
   const std::vector<Eigen::Isometry3d>& poses() const { return poses_; }
 
-  /// A screw segment as a joint: the body at `start` (the pose at t0) moved by joint.transform(q)
-  /// for q in [0, joint.hi] is the motion over [t0, t1].
-  struct ScrewSegment {
-    ScrewJoint joint;
-    Eigen::Isometry3d start = Eigen::Isometry3d::Identity();
-    double t0 = 0, t1 = 0;
-  };
   /// The segments as screw motions, those that keep the pose left out: every segment of screw
   /// interpolation; linear segments when each only slides, only turns, or turns about an axis it
   /// slides along (else none).
   std::optional<std::vector<ScrewSegment>> screw_segments() const;
+  /// Neighbouring segments that continue one screw (the same kind, axis line and pitch, and the
+  /// second starting where the first ends, each to 1e-12 of `scale`, the model's size) as one
+  /// segment over both ranges: keyframes sampled from one screw motion become that motion.
+  static std::vector<ScrewSegment> merged(const std::vector<ScrewSegment>& segments, double scale);
 
  private:
   /// Segment k: from pose k, the rotation angle rate `rate` (radians per unit t) about unit axis
