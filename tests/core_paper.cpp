@@ -187,3 +187,52 @@ TEST_CASE("Membership in a swept curve: inside and outside points of a torus sec
   // beyond the range of the joint
   CHECK_FALSE(sweep::in_swept_image(*pe, m, Vector3d(4, -0.2, 0), 1e-9, 5.0));
 }
+
+TEST_CASE("Membership in a swept image: the second-order exclusion gives the first-order answers") {
+  // random chains of two or three joints of every kind, a point, a curve or a surface, and points
+  // near the image (image points moved by 1e-6 to 1e-2 of the size in random directions) and far off
+  std::mt19937_64 rng(41);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const char* entities[3] = {R"J("kind": "point", "at": [0.3, -0.2, 0.5])J",
+                             R"J("kind": "curve", "params": {"s": [0, 2]}, "xyz": ["1+0.5*cos(s)", "0.5*sin(s)", "0.2*s"])J",
+                             R"J("kind": "surface", "params": {"u": [0, 1], "v": [0, 1]}, "xyz": ["u", "v", "0.3*u*v"])J"};
+  const char* types[3] = {"revolute", "prismatic", "helical"};
+  int compared = 0, decided_out = 0;
+  for (int trial = 0; trial < 24; ++trial) {
+    std::string joints;
+    const int n = trial % 3 == 0 ? 3 : 2;
+    for (int i = 0; i < n; ++i) {
+      const double lo = u(rng), len = 0.5 + 2 * std::abs(u(rng));
+      const std::string type = types[std::abs(int(3 * u(rng))) % 3];
+      joints += std::string(i ? ", " : "") + "{\"type\": \"" + type +
+                "\", \"point\": [" + std::to_string(u(rng)) + ", " + std::to_string(u(rng)) + ", " +
+                std::to_string(u(rng)) + "], \"direction\": [" + std::to_string(u(rng)) + ", " +
+                std::to_string(u(rng)) + ", " + std::to_string(u(rng) + 0.01) + "]" +
+                (type == "helical" ? ", \"pitch\": 1.3" : "") + ", \"range\": [" +
+                std::to_string(lo) + ", " + std::to_string(lo + len) + "]}";
+    }
+    const Spec spec = sweep::parse_spec(std::string("{\"sweep\": 1, \"entity\": {") + entities[trial % 3] +
+                                            "}, \"motion\": {\"kind\": \"axes\", \"joints\": [" + joints + "]}}",
+                                        ".");
+    auto pe = sweep::ParametricEntity::make(spec.entity);
+    REQUIRE(pe);
+    const sweep::Motion& m = spec.motion.motion;
+    for (int k = 0; k < 20; ++k) {
+      std::vector<double> q, s;
+      for (const auto& j : m.joints) q.push_back(j.lo + (j.hi - j.lo) * 0.5 * (1 + u(rng)));
+      for (std::size_t i = 0; i < pe->num_params(); ++i) s.push_back(pe->lo(i) + (pe->hi(i) - pe->lo(i)) * 0.5 * (1 + u(rng)));
+      const Vector3d on = m.transform(q) * pe->eval(s.data());
+      const double off = std::pow(10.0, -6 + 4 * 0.5 * (1 + u(rng))) * 5.0;
+      const Vector3d x = k % 5 == 4 ? Vector3d(9, 9, 9) : on + off * Vector3d(u(rng), u(rng), u(rng)).normalized();
+      const int second = sweep::swept_image_membership(*pe, m, x, 1e-9, 5.0, 200000, true, true);
+      const int first = sweep::swept_image_membership(*pe, m, x, 1e-9, 5.0, 200000, true, false);
+      INFO("trial " << trial << " point " << k);
+      if (first < 0) continue;  // the first-order search ran out of boxes
+      CHECK(second == first);
+      ++compared;
+      decided_out += first == 0;
+    }
+  }
+  CHECK(compared >= 300);
+  CHECK(decided_out >= 60);
+}

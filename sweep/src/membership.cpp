@@ -1,5 +1,6 @@
 #include "sweep/membership.hpp"
 
+#include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -210,6 +211,58 @@ bool solve_image(const ParametricEntity& e, const Motion& motion, const Vector3d
   return f < eps;
 }
 
+/// A lower bound of |M(q) Gamma(s) - x| over the box of centre c and half widths w (joints, then
+/// entity parameters), from the first-order model at the centre and a bound on the remainder:
+///   |P(c) + J d - x| >= |u . (P(c) - x)| - sum_i |u . J_i| w_i  for unit u (the residual's
+///   direction, and the normal of J's range, which is what matters at a fold);
+///   |remainder| <= 1/2 sum_ij |d2P/dz_i dz_j| w_i w_j, where with joints outermost first a joint i
+///   outside (or equal to) joint j turns joint j's velocity, so |d2P/dq_i dq_j| <= [i turns] S_j,
+///   S_j the bound on joint j's speed over the box (`speed`); with an entity parameter a it is
+///   [i turns] G_a (G_a bounds |dGamma/ds_a| over the box), and between parameters the map's
+///   Hessian bound.
+double second_order_gap(const ParametricEntity& e, const Motion& motion, const Vector3d& x,
+                        const std::vector<double>& c, const std::vector<double>& w, const std::vector<double>& speed) {
+  const std::size_t n = motion.dof(), k = c.size(), m = k - n;
+  Vector3d dg[2];
+  const Vector3d g = e.eval(c.data() + n, dg);
+  // P and its Jacobian at the centre: joint i's velocity field, carried by the outer joints
+  Eigen::Matrix<double, 3, Eigen::Dynamic> J(3, k);
+  Eigen::Isometry3d A = Eigen::Isometry3d::Identity();
+  std::vector<Eigen::Isometry3d> outer(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    outer[i] = A;
+    A = A * motion.joints[i].transform(c[i]);
+  }
+  const Vector3d P = A * motion.home * g;
+  for (std::size_t i = 0; i < n; ++i) J.col(i) = outer[i].linear() * motion.joints[i].velocity(outer[i].inverse() * P);
+  const Eigen::Matrix3d R = (A * motion.home).linear();
+  for (std::size_t a = 0; a < m; ++a) J.col(n + a) = R * dg[a];
+  // the remainder
+  double ws = 0;
+  for (std::size_t a = 0; a < m; ++a) ws += w[n + a];
+  double rem = e.hessian_bound() * ws * ws;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!motion.joints[i].is_rotation()) continue;
+    double inner = speed[i] * w[i];  // joint i with itself, then with the joints inside it (twice)
+    for (std::size_t j = i + 1; j < n; ++j) inner += 2 * speed[j] * w[j];
+    for (std::size_t a = 0; a < m; ++a) inner += 2 * (dg[a].norm() + e.hessian_bound() * ws) * w[n + a];
+    rem += w[i] * inner;
+  }
+  rem *= 0.5;
+  // the linear model's distance from x, along the residual and along the normal of J's range
+  const Vector3d F = P - x;
+  double best = 0;
+  auto along = [&](const Vector3d& u) {
+    double lb = std::abs(u.dot(F));
+    for (std::size_t i = 0; i < k; ++i) lb -= std::abs(u.dot(J.col(i))) * w[i];
+    best = std::max(best, lb);
+  };
+  if (F.norm() > 0) along(F.normalized());
+  const Eigen::JacobiSVD<Eigen::Matrix<double, 3, Eigen::Dynamic>> svd(J, Eigen::ComputeFullU);
+  along(svd.matrixU().col(2));
+  return best - rem;
+}
+
 }  // namespace
 
 bool in_swept_image(const ParametricEntity& e, const Motion& motion, const Vector3d& x, double resolution,
@@ -218,7 +271,7 @@ bool in_swept_image(const ParametricEntity& e, const Motion& motion, const Vecto
 }
 
 int swept_image_membership(const ParametricEntity& e, const Motion& motion, const Vector3d& x, double resolution,
-                           double scale, std::size_t budget, bool undecided_past_budget) {
+                           double scale, std::size_t budget, bool undecided_past_budget, bool second_order) {
   const std::size_t n = motion.dof(), m = e.num_params(), k = n + m;
   SWEEP_ASSERT(n >= 1, "motion without joints");
   std::vector<double> lo(k), hi(k);
@@ -232,8 +285,9 @@ int swept_image_membership(const ParametricEntity& e, const Motion& motion, cons
   }
   const double eps = 1e-10 * scale;
   std::vector<SearchBox> stack{SearchBox{lo, hi}};
-  std::vector<double> c(k), w(k);
+  std::vector<double> c(k), w(k), speed(n);
   std::size_t iterations = 0;
+  bool unresolved = false;
   while (!stack.empty()) {
     SearchBox b = std::move(stack.back());
     stack.pop_back();
@@ -253,27 +307,32 @@ int swept_image_membership(const ParametricEntity& e, const Motion& motion, cons
     Vector3d Q = motion.home * e.eval(c.data() + n);
     for (std::size_t i = n; i-- > 0;) {
       const ScrewJoint& j = motion.joints[i];
-      double mv = w[i];
+      speed[i] = 1.0;
       if (j.is_rotation()) {
         const Vector3d rel = Q - j.point;
         const double r = (rel - rel.dot(j.direction) * j.direction).norm() + move;
-        mv = w[i] * std::sqrt(r * r + j.pitch * j.pitch);
+        speed[i] = std::sqrt(r * r + j.pitch * j.pitch);
       }
+      const double mv = w[i] * speed[i];
       if (mv > split_move) { split_move = mv; split = i; }
       move += mv;
       Q = j.transform(c[i]) * Q;
     }
     const double gap = (Q - x).norm();
     if (gap > move) continue;
+    if (second_order && second_order_gap(e, motion, x, c, w, speed) > 0) continue;
     if (gap < 0.5 * move && solve_image(e, motion, x, c, lo, hi, eps)) return 1;
-    if (move < resolution) continue;
+    if (move < resolution) {  // no exclusion and no solve within the resolution
+      unresolved = true;
+      continue;
+    }
     if (++iterations > budget) {
       if (undecided_past_budget) return -1;
       continue;
     }
     push_halves(stack, std::move(b), split);
   }
-  return 0;
+  return unresolved && undecided_past_budget ? -1 : 0;
 }
 
 MonteCarloResult monte_carlo_volume(const std::function<bool(const Vector3d&)>& inside,

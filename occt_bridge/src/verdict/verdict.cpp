@@ -25,6 +25,7 @@
 #include <array>
 #include <atomic>
 #include <map>
+#include <memory>
 #include <cmath>
 #include <mutex>
 #include <random>
@@ -300,11 +301,13 @@ std::vector<Probe> pick_probes(const TopoDS_Shape& solid, const std::vector<Face
 }
 
 /// Each probe tested by the membership at `delta` outside and inside its face (where the
-/// membership cannot decide that close, farther off, up to `deflection`). In batches: when the
-/// membership leaves almost every probe of the first batch undecided (a search over joint
-/// parameters this close to the boundary), the rest are not tried.
-void judge_probes(const std::vector<Probe>& probes, const MemberTestMaker& member, double delta, double deflection,
-                  FirstMismatch& first, VerdictResult& r) {
+/// membership cannot decide that close, farther off, up to `deflection`). At `delta` the points
+/// are taken as outside and inside the solid; farther off, where the solid may be thinner than the
+/// offset (a sliver along a fold), the exact solid's classifier says which side each point is on.
+/// In batches: when the membership leaves almost every probe of the first batch undecided (a
+/// search over joint parameters this close to the boundary), the rest are not tried.
+void judge_probes(const TopoDS_Shape& solid, double tol, const std::vector<Probe>& probes, const MemberTestMaker& member,
+                  double delta, double deflection, FirstMismatch& first, VerdictResult& r) {
   std::atomic<std::size_t> bad{0}, undecided{0};
   std::mutex offset_mutex;
   r.probe_offset_max = delta;
@@ -315,7 +318,8 @@ void judge_probes(const std::vector<Probe>& probes, const MemberTestMaker& membe
     const std::size_t undecided_before = undecided;
     parallel_for(count, [&]() -> std::function<void(std::size_t)> {
       const MemberTest in_set = member();
-      return [&, in_set, start](std::size_t k) {
+      auto cls = std::make_shared<std::unique_ptr<BRepClass3d_SolidClassifier>>();  // made when first needed
+      return [&, in_set, start, cls](std::size_t k) {
         const Probe& pr = probes[start + k];
         int mo = -1, mi = -1;
         double off = delta;
@@ -328,15 +332,33 @@ void judge_probes(const std::vector<Probe>& probes, const MemberTestMaker& membe
           ++undecided;
           return;
         }
+        bool out_in_solid = false, in_in_solid = true;
         if (off > delta) {
-          std::lock_guard<std::mutex> lock(offset_mutex);
-          r.probe_offset_max = std::max(r.probe_offset_max, off);
+          {
+            std::lock_guard<std::mutex> lock(offset_mutex);
+            r.probe_offset_max = std::max(r.probe_offset_max, off);
+          }
+          if (!*cls) *cls = std::make_unique<BRepClass3d_SolidClassifier>(solid);
+          (*cls)->Perform(to_pnt(pr.p + off * pr.n), tol);
+          const TopAbs_State so = (*cls)->State();
+          (*cls)->Perform(to_pnt(pr.p - off * pr.n), tol);
+          const TopAbs_State si = (*cls)->State();
+          if (so == TopAbs_ON || si == TopAbs_ON) {
+            ++undecided;
+            return;
+          }
+          out_in_solid = so == TopAbs_IN;
+          in_in_solid = si == TopAbs_IN;
         }
         const bool out_in_set = mo == 1, in_in_set = mi == 1;
-        if (out_in_set || !in_in_set) {
+        if (out_in_set != out_in_solid || in_in_set != in_in_solid) {
           ++bad;
           first.note(std::string("the boundary of the solid at ") + point_text(pr.p) + " is not that of the swept set (" +
-                     (out_in_set ? "a point just outside it is swept" : "a point just inside it is not swept") + ")");
+                     (out_in_set != out_in_solid ? (out_in_set ? "a point just outside it is swept"
+                                                               : "a point outside it, in the solid, is not swept")
+                                                 : (in_in_set ? "a point inside it, outside the solid, is swept"
+                                                              : "a point just inside it is not swept")) +
+                     ")");
         }
       };
     });
@@ -395,8 +417,8 @@ VerdictResult judge_solid(const TopoDS_Shape& solid, const Eigen::AlignedBox3d& 
   FirstMismatch first(r.first_mismatch);
   judge_samples(solid, by_mesh ? &mesh : nullptr, box, member, tol, tol + 3 * deflection, settings, first, r);
   const double delta = settings.probe_offset * tol;
-  judge_probes(pick_probes(meshed, faces, deflection, 10 * delta + deflection, settings), member, delta, deflection,
-               first, r);
+  judge_probes(solid, tol, pick_probes(meshed, faces, deflection, 10 * delta + deflection, settings), member, delta,
+               deflection, first, r);
   // The symmetric difference: where samples disagree, the band that was not tested and the
   // samples the membership did not decide.
   r.difference_bound =

@@ -52,6 +52,8 @@ class ParametricEntity {
   /// second-order term from the largest Hessian norm, sampled on a grid over the parameter box and
   /// doubled. When `each` is given, it receives the bound for each parameter varying alone.
   double move_bound(const double* c, const double* w, double* each = nullptr) const;
+  /// The bound on the second derivatives of Gamma that move_bound uses.
+  double hessian_bound() const { return hessian_bound_; }
 
  private:
   std::array<Expr, 3> xyz_;
@@ -71,19 +73,24 @@ bool slides_along_itself(const EntitySpec& e, const Eigen::Isometry3d& G, const 
                          double scale, EntitySpec* reduced);
 
 /// True when x is in the image of (q, s) -> M(q) Gamma(s) over the joint box and the parameter
-/// box. A branch and bound over both boxes discards a sub-box when the gap |M(c)^-1 x - Gamma(s_c)|
-/// exceeds what the motion and the map can move within it; membership is proved by a projected
+/// box. A branch and bound over both boxes discards a sub-box when the gap |M(c) Gamma(s_c) - x|
+/// exceeds what the motion and the map can move within it, or when the first-order model at the
+/// centre stays farther from x than the second-order remainder allows (second_order_gap, which
+/// needs far smaller boxes near a fold of the map, where the swept set's boundary lies); membership is proved by a projected
 /// Gauss-Newton solve of M(q) Gamma(s) = x started in a surviving sub-box, converging to 1e-10 of
 /// `scale` inside the boxes. Sub-boxes smaller than `resolution` that no solve reaches count as
 /// outside (only points within about `resolution` of the boundary are at stake).
 bool in_swept_image(const ParametricEntity& entity, const Motion& motion, const Eigen::Vector3d& x,
                     double resolution, double scale);
 
-/// The same search splitting at most `budget` sub-boxes: 1 in, 0 out; past the budget, -1
-/// (undecided) when `undecided_past_budget`, else the sub-boxes left are counted as outside (what
+/// The same search splitting at most `budget` sub-boxes: 1 in, 0 out; past the budget, or with a
+/// sub-box below the resolution that neither the bounds exclude nor a solve proves, -1
+/// (undecided) when `undecided_past_budget`, else those sub-boxes are counted as outside (what
 /// in_swept_image does, with a budget of 200000).
+/// `second_order` off leaves sub-boxes to the first-order test alone (the same answers, more boxes).
 int swept_image_membership(const ParametricEntity& entity, const Motion& motion, const Eigen::Vector3d& x,
-                           double resolution, double scale, std::size_t budget, bool undecided_past_budget = true);
+                           double resolution, double scale, std::size_t budget, bool undecided_past_budget = true,
+                           bool second_order = true);
 
 /// Monte Carlo estimate of a volume from a membership test inside an axis-aligned box. With
 /// `compare` (a second membership, e.g. a computed solid's), the samples where the two disagree
