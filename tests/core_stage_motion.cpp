@@ -40,6 +40,17 @@ Eigen::Isometry3d random_pose(std::mt19937& rng) {
 
 Expr texpr(const std::string& s) { return Expr::parse(s, {"t"}); }
 
+/// A joint of kind `k` % 3 (prismatic, revolute, helical) on a random axis, its range left to the caller.
+ScrewJoint random_joint(std::mt19937& rng, int k) {
+  std::uniform_real_distribution<double> u(-1, 1);
+  ScrewJoint j;
+  j.type = k % 3 == 0 ? JointType::Prismatic : k % 3 == 1 ? JointType::Revolute : JointType::Helical;
+  j.point = {u(rng), u(rng), u(rng)};
+  j.direction = Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized();
+  j.pitch = j.type == JointType::Helical ? u(rng) : 0.0;
+  return j;
+}
+
 }  // namespace
 
 TEST_CASE("Stage motions: a screw stage's derivatives and velocity field", "[stage_motion]") {
@@ -96,11 +107,7 @@ TEST_CASE("Stage motions: screw segments that continue one screw merge into it, 
   std::uniform_real_distribution<double> u(-1, 1);
   for (int trial = 0; trial < 20; ++trial) {
     // keyframes sampled from one random screw (of each kind), then a second screw after the last pose
-    ScrewJoint j;
-    j.type = trial % 3 == 0 ? JointType::Prismatic : trial % 3 == 1 ? JointType::Revolute : JointType::Helical;
-    j.point = {u(rng), u(rng), u(rng)};
-    j.direction = Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized();
-    j.pitch = j.type == JointType::Helical ? u(rng) : 0.0;
+    ScrewJoint j = random_joint(rng, trial);
     j.lo = 0;
     j.hi = 2.5;
     const Eigen::Isometry3d home = random_pose(rng);
@@ -213,11 +220,7 @@ TEST_CASE("Stage motions: a motion that is one screw says so, with the range it 
   std::mt19937 rng(17);
   std::uniform_real_distribution<double> u(-1, 1);
   for (int trial = 0; trial < 30; ++trial) {
-    ScrewJoint j;
-    j.type = trial % 3 == 0 ? JointType::Prismatic : trial % 3 == 1 ? JointType::Revolute : JointType::Helical;
-    j.point = {u(rng), u(rng), u(rng)};
-    j.direction = Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized();
-    j.pitch = j.type == JointType::Helical ? u(rng) : 0.0;
+    ScrewJoint j = random_joint(rng, trial);
     j.lo = u(rng);
     j.hi = j.lo + 0.2 + 7 * std::abs(u(rng));  // up to more than a whole turn
     const ScrewStage stage(j, random_pose(rng));
