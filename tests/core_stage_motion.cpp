@@ -40,6 +40,14 @@ Eigen::Isometry3d random_pose(std::mt19937& rng) {
 
 Expr texpr(const std::string& s) { return Expr::parse(s, {"t"}); }
 
+/// The poses of `m` at n + 1 equally spaced times over its range, and those times.
+void sample_poses(const StageMotion& m, int n, std::vector<double>& ts, std::vector<Eigen::Isometry3d>& poses) {
+  for (int k = 0; k <= n; ++k) {
+    ts.push_back(m.lo() + (m.hi() - m.lo()) * k / n);
+    poses.push_back(m.transform(ts.back()));
+  }
+}
+
 /// A joint of kind `k` % 3 (prismatic, revolute, helical) on a random axis, its range left to the caller.
 ScrewJoint random_joint(std::mt19937& rng, int k) {
   std::uniform_real_distribution<double> u(-1, 1);
@@ -85,10 +93,7 @@ TEST_CASE("Stage motions: screw keyframes reproduce the screw joint they sample"
     const ScrewStage exact(j, home);
     std::vector<double> ts;
     std::vector<Eigen::Isometry3d> poses;
-    for (int k = 0; k <= 8; ++k) {
-      ts.push_back(j.hi * k / 8.0);
-      poses.push_back(exact.transform(ts.back()));
-    }
+    sample_poses(exact, 8, ts, poses);
     const KeyframeMotion keys(ts, poses, KeyframeMotion::Interpolation::Screw);
     for (double t : {0.1, 0.77, 1.3, 2.49}) {
       const PoseJet a = exact.pose(t), b = keys.pose(t);
@@ -114,10 +119,7 @@ TEST_CASE("Stage motions: screw segments that continue one screw merge into it, 
     const ScrewStage exact(j, home);
     std::vector<double> ts;
     std::vector<Eigen::Isometry3d> poses;
-    for (int k = 0; k <= 8; ++k) {
-      ts.push_back(j.hi * k / 8.0);
-      poses.push_back(exact.transform(ts.back()));
-    }
+    sample_poses(exact, 8, ts, poses);
     ScrewJoint other = j;
     other.direction = Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized();
     ts.push_back(3.0);

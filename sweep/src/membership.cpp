@@ -163,26 +163,35 @@ double ParametricEntity::move_bound(const double* c, const double* w, double* ea
 
 namespace {
 
+/// dP/dz for P = M(q) Gamma(s), z the joints then the entity parameters, into J (3 x z's size):
+/// joint i's velocity field, carried by the outer joints, at P; then Gamma's derivatives `dg` turned
+/// by M(q). `joint_pose[i]` is joint i's transform at q_i.
+void image_jacobian(const Motion& motion, const std::vector<Eigen::Isometry3d>& joint_pose, const Vector3d& P,
+                    const Vector3d* dg, Eigen::MatrixXd& J) {
+  const std::size_t n = motion.dof();
+  Eigen::Isometry3d A = Eigen::Isometry3d::Identity();
+  for (std::size_t i = 0; i < n; ++i) {
+    J.col(i) = A.linear() * motion.joints[i].velocity(A.inverse() * P);
+    A = A * joint_pose[i];
+  }
+  const Eigen::Matrix3d R = (A * motion.home).linear();
+  for (std::size_t m = n; m < std::size_t(J.cols()); ++m) J.col(m) = R * dg[m - n];
+}
+
 /// Projected, damped Gauss-Newton for M(q) Gamma(s) = x over the boxes, from z (joints then
 /// entity parameters). True when the residual falls below `eps`.
 bool solve_image(const ParametricEntity& e, const Motion& motion, const Vector3d& x, std::vector<double> z,
                  const std::vector<double>& lo, const std::vector<double>& hi, double eps) {
   const std::size_t n = motion.dof(), k = z.size();
   Eigen::MatrixXd J(3, k);
+  std::vector<Eigen::Isometry3d> joint_pose(n);
   auto residual = [&](const std::vector<double>& zz, bool with_jacobian) {
     Vector3d dg[2];
     const Vector3d g = e.eval(zz.data() + n, with_jacobian ? dg : nullptr);
     const Vector3d P = motion.transform(std::vector<double>(zz.begin(), zz.begin() + n)) * g;
     if (with_jacobian) {
-      // dP/dq_i: joint i's velocity field, carried by the outer joints, at P.
-      Eigen::Isometry3d A = Eigen::Isometry3d::Identity();
-      for (std::size_t i = 0; i < n; ++i) {
-        const ScrewJoint& j = motion.joints[i];
-        J.col(i) = A.linear() * j.velocity(A.inverse() * P);
-        A = A * j.transform(zz[i]);
-      }
-      const Eigen::Matrix3d R = (A * motion.home).linear();
-      for (std::size_t m = 0; m + n < k; ++m) J.col(n + m) = R * dg[m];
+      for (std::size_t i = 0; i < n; ++i) joint_pose[i] = motion.joints[i].transform(zz[i]);
+      image_jacobian(motion, joint_pose, P, dg, J);
     }
     return Vector3d(P - x);
   };
@@ -220,23 +229,15 @@ bool solve_image(const ParametricEntity& e, const Motion& motion, const Vector3d
 ///   S_j the bound on joint j's speed over the box (`speed`); with an entity parameter a it is
 ///   [i turns] G_a (G_a bounds |dGamma/ds_a| over the box), and between parameters the map's
 ///   Hessian bound.
-double second_order_gap(const ParametricEntity& e, const Motion& motion, const Vector3d& x,
-                        const std::vector<double>& c, const std::vector<double>& w, const std::vector<double>& speed) {
+/// `P` is the image of the centre and `joint_pose` the joints' transforms there.
+double second_order_gap(const ParametricEntity& e, const Motion& motion, const Vector3d& x, const Vector3d& P,
+                        const std::vector<Eigen::Isometry3d>& joint_pose, const std::vector<double>& c,
+                        const std::vector<double>& w, const std::vector<double>& speed) {
   const std::size_t n = motion.dof(), k = c.size(), m = k - n;
   Vector3d dg[2];
-  const Vector3d g = e.eval(c.data() + n, dg);
-  // P and its Jacobian at the centre: joint i's velocity field, carried by the outer joints
-  Eigen::Matrix<double, 3, Eigen::Dynamic> J(3, k);
-  Eigen::Isometry3d A = Eigen::Isometry3d::Identity();
-  std::vector<Eigen::Isometry3d> outer(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    outer[i] = A;
-    A = A * motion.joints[i].transform(c[i]);
-  }
-  const Vector3d P = A * motion.home * g;
-  for (std::size_t i = 0; i < n; ++i) J.col(i) = outer[i].linear() * motion.joints[i].velocity(outer[i].inverse() * P);
-  const Eigen::Matrix3d R = (A * motion.home).linear();
-  for (std::size_t a = 0; a < m; ++a) J.col(n + a) = R * dg[a];
+  e.eval(c.data() + n, dg);
+  Eigen::MatrixXd J(3, k);
+  image_jacobian(motion, joint_pose, P, dg, J);
   // the remainder
   double ws = 0;
   for (std::size_t a = 0; a < m; ++a) ws += w[n + a];
@@ -258,7 +259,7 @@ double second_order_gap(const ParametricEntity& e, const Motion& motion, const V
     best = std::max(best, lb);
   };
   if (F.norm() > 0) along(F.normalized());
-  const Eigen::JacobiSVD<Eigen::Matrix<double, 3, Eigen::Dynamic>> svd(J, Eigen::ComputeFullU);
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(J, Eigen::ComputeFullU);
   along(svd.matrixU().col(2));
   return best - rem;
 }
@@ -286,6 +287,7 @@ int swept_image_membership(const ParametricEntity& e, const Motion& motion, cons
   const double eps = 1e-10 * scale;
   std::vector<SearchBox> stack{SearchBox{lo, hi}};
   std::vector<double> c(k), w(k), speed(n);
+  std::vector<Eigen::Isometry3d> joint_pose(n);
   std::size_t iterations = 0;
   bool unresolved = false;
   while (!stack.empty()) {
@@ -316,11 +318,12 @@ int swept_image_membership(const ParametricEntity& e, const Motion& motion, cons
       const double mv = w[i] * speed[i];
       if (mv > split_move) { split_move = mv; split = i; }
       move += mv;
-      Q = j.transform(c[i]) * Q;
+      joint_pose[i] = j.transform(c[i]);
+      Q = joint_pose[i] * Q;
     }
     const double gap = (Q - x).norm();
     if (gap > move) continue;
-    if (second_order && second_order_gap(e, motion, x, c, w, speed) > 0) continue;
+    if (second_order && second_order_gap(e, motion, x, Q, joint_pose, c, w, speed) > 0) continue;
     if (gap < 0.5 * move && solve_image(e, motion, x, c, lo, hi, eps)) return 1;
     if (move < resolution) {  // no exclusion and no solve within the resolution
       unresolved = true;

@@ -73,10 +73,6 @@ double distance_to_axis(const Eigen::Vector3d& x, const Eigen::Vector3d& c, cons
   return (r - w * w.dot(r)).norm();
 }
 
-}  // namespace
-
-namespace {
-
 /// The screw of one twist, the rate along it 1: a turn about the axis through `point` with `pitch`,
 /// or a slide along v when the twist does not turn.
 ScrewJoint screw_of(const Twist& tw) {
@@ -458,8 +454,7 @@ bool continues(const ScrewSegment& a, const ScrewSegment& b, double scale) {
 
 }  // namespace
 
-std::vector<ScrewSegment> KeyframeMotion::merged(const std::vector<ScrewSegment>& segments,
-                                                                 double scale) {
+std::vector<ScrewSegment> KeyframeMotion::merged(const std::vector<ScrewSegment>& segments, double scale) {
   std::vector<ScrewSegment> out;
   for (const ScrewSegment& s : segments) {
     if (!out.empty() && continues(out.back(), s, scale)) {

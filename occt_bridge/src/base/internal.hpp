@@ -53,6 +53,13 @@ Handle(Geom_BSplineSurface) fit_grid_surface(const std::function<gp_Pnt(double, 
 /// Points sampled on a parametric curve or surface entity (placed), for its extent.
 TopoDS_Shape sampled_points(const EntitySpec& e);
 
+/// The entity's shape for its extent, before the tolerance is known: parametric curves and surfaces
+/// as sampled points, every other kind as entity_shape builds it (within 1e-9).
+TopoDS_Shape sizing_shape(const EntitySpec& e, double* fit_error);
+/// The shape the stages sweep: `sizing` itself, but parametric curves and surfaces fitted within
+/// fit_tol.
+TopoDS_Shape fitted_entity_shape(const EntitySpec& e, const TopoDS_Shape& sizing, double fit_tol, double* fit_error);
+
 /// A curve on a face where the motion's velocity is tangent to the face (n . v = 0), fitted to
 /// tolerance, with the number of fitted points.
 struct GrazingCurve {

@@ -271,6 +271,18 @@ TopoDS_Shape sampled_points(const EntitySpec& e) {
   return comp;
 }
 
+namespace {
+bool fitted_once_tolerance_known(const EntitySpec& e) { return e.kind == EntityKind::Curve || e.kind == EntityKind::Surface; }
+}  // namespace
+
+TopoDS_Shape sizing_shape(const EntitySpec& e, double* fit_error) {
+  return fitted_once_tolerance_known(e) ? sampled_points(e) : entity_shape(e, 1e-9, fit_error);
+}
+
+TopoDS_Shape fitted_entity_shape(const EntitySpec& e, const TopoDS_Shape& sizing, double fit_tol, double* fit_error) {
+  return fitted_once_tolerance_known(e) ? entity_shape(e, fit_tol, fit_error) : sizing;
+}
+
 TopoDS_Shape read_shape_file(const std::string& path, const std::string& pointer) {
   std::string ext = path.substr(path.find_last_of('.') + 1);
   std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);

@@ -171,7 +171,6 @@ double model_size(const TopoDS_Shape& raw, const Motion& motion) {
   return std::max(size, reach.sizes().maxCoeff());
 }
 
-
 ChainSweep sweep_chain(const ChainEntity& entity, const Motion& motion, bool judged, const RunOptions& opt,
                        double& fit_err, Report& rep, const std::function<void(const std::string&)>& step) {
   ChainSweep out;

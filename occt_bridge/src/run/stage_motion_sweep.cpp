@@ -29,7 +29,6 @@
 #include "base/internal.hpp"
 #include "base/stop.hpp"
 #include "run/run_steps.hpp"
-#include "sweep/entity.hpp"
 #include "sweep/error.hpp"
 #include "sweep/stage_membership.hpp"
 #include "sweep/swept_box.hpp"
@@ -47,15 +46,15 @@ Eigen::AlignedBox3d box_of(const TopoDS_Shape& s) {
   return Eigen::AlignedBox3d(Eigen::Vector3d(x0, y0, z0), Eigen::Vector3d(x1, y1, z1));
 }
 
-/// The largest distance from the origin of a point of the entity's box.
-double entity_radius(const EntitySpec& e) {
-  Eigen::AlignedBox3d box;
-  if (const EntityPtr entity = make_entity(e)) {
-    box = entity->box();
-  } else {
-    double fit_err = 0;
-    box = box_of(entity_shape(e, 1e-9, &fit_err));
-  }
+/// The entity's shape for its extent (sizing_shape), built once per run, and its fit error.
+struct Sizing {
+  TopoDS_Shape shape;
+  double fit_err = 0;
+};
+
+/// The largest distance from the origin of a point of the shape's box.
+double radius_of(const TopoDS_Shape& s) {
+  const Eigen::AlignedBox3d box = box_of(s);
   double r = 0;
   for (int k = 0; k < 8; ++k) r = std::max(r, box.corner(Eigen::AlignedBox3d::CornerType(k)).norm());
   return r;
@@ -169,23 +168,20 @@ TopoDS_Shape fused(const std::vector<TopoDS_Shape>& parts, double size) {
 /// segments' screw sweeps, each built by the stages of a one-joint chain, judged once as a whole.
 /// Segments that continue one screw are swept as one. The judge is the union of the segments' own
 /// independent memberships (exact for each screw; the segments come from the input motion alone).
-void screw_segments_sweep(const Spec& spec, const StageMotion& m, const std::vector<ScrewSegment>& screw_segments,
-                          const RunOptions& opt, RunResult& res) {
+void screw_segments_sweep(const Spec& spec, const StageMotion& m, const Sizing& sizing,
+                          const std::vector<ScrewSegment>& screw_segments, const RunOptions& opt, RunResult& res) {
   Report& rep = res.report;
   if (screw_segments.empty()) throw ComputeError("the poses never move the entity: nothing is swept");
-  const auto t_start = Clock::now();
-  double fit_err = 0;
-  // parametric curves and surfaces are fitted once the tolerance is known (as in run_sweep)
-  const bool parametric = spec.entity.kind == EntityKind::Curve || spec.entity.kind == EntityKind::Surface;
-  TopoDS_Shape raw = parametric ? sampled_points(spec.entity) : entity_shape(spec.entity, 1e-9, &fit_err);
-  const double size = stage_model_size(raw, m);
+  const auto t_fit = Clock::now();
+  double fit_err = sizing.fit_err;
+  const double size = stage_model_size(sizing.shape, m);
   rep.tol_requested = spec.tolerance > 0 ? spec.tolerance : 1e-6 * size;
   const double tol = rep.tol_requested, fit_tol = 0.01 * tol;
-  if (parametric) raw = entity_shape(spec.entity, fit_tol, &fit_err);
+  const TopoDS_Shape raw = fitted_entity_shape(spec.entity, sizing.shape, fit_tol, &fit_err);
   const std::shared_ptr<const SignedDistance> sd(make_signed_distance(spec.entity));
   const std::unique_ptr<ParametricEntity> pe = ParametricEntity::make(spec.entity);
   const Eigen::AlignedBox3d entity_box = box_of(raw);
-  rep.seconds["entity"] = since(t_start);
+  rep.seconds["entity"] = rep.seconds.value("entity", 0.0) + since(t_fit);
   const auto segments = KeyframeMotion::merged(screw_segments, size);
   RunOptions chain_opt = opt;  // the segments' candidates are not reported
   chain_opt.varieties = nullptr;
@@ -242,11 +238,11 @@ void screw_segments_sweep(const Spec& spec, const StageMotion& m, const std::vec
 
 /// A ball under a general one-parameter motion, given as pieces along which its centre's path is
 /// smooth (the whole motion, or the segments of linear keyframes): the union of their tubes.
-void ball_stage_sweep(const Spec& spec, const StageMotion& m, const std::vector<const StageMotion*>& pieces,
-                      const RunOptions& opt, RunResult& res) {
+void ball_stage_sweep(const Spec& spec, const StageMotion& m, const Sizing& sizing,
+                      const std::vector<const StageMotion*>& pieces, const RunOptions& opt, RunResult& res) {
   Report& rep = res.report;
-  double fit_err = 0;
-  const TopoDS_Shape raw = entity_shape(spec.entity, 1e-9, &fit_err);
+  double fit_err = sizing.fit_err;
+  const TopoDS_Shape& raw = sizing.shape;
   const double size = stage_model_size(raw, m);
   rep.tol_requested = spec.tolerance > 0 ? spec.tolerance : 1e-6 * size;
   const double tol = rep.tol_requested;
@@ -273,15 +269,14 @@ void ball_stage_sweep(const Spec& spec, const StageMotion& m, const std::vector<
 
 /// A point (its trajectory, a curve) or a curve (a surface) under a general motion, one fitted
 /// B-spline per smooth piece of the motion.
-void low_dimension_stage_sweep(const Spec& spec, const StageMotion& m, const std::vector<const StageMotion*>& pieces,
-                               const RunOptions& opt, RunResult& res) {
+void low_dimension_stage_sweep(const Spec& spec, const StageMotion& m, const Sizing& sizing,
+                               const std::vector<const StageMotion*>& pieces, const RunOptions& opt, RunResult& res) {
   Report& rep = res.report;
   const int dim = spec.entity.dimension();
   const std::unique_ptr<ParametricEntity> pe = ParametricEntity::make(spec.entity);
   if (!pe) throw InternalError("no parametric map for a point or curve entity");
-  double fit_err = 0;
-  const TopoDS_Shape raw = dim == 0 ? entity_shape(spec.entity, 1e-9, &fit_err) : sampled_points(spec.entity);
-  const double size = stage_model_size(raw, m);
+  double fit_err = sizing.fit_err;
+  const double size = stage_model_size(sizing.shape, m);
   rep.tol_requested = spec.tolerance > 0 ? spec.tolerance : 1e-6 * size;
   const double fit_tol = 0.01 * rep.tol_requested;
   const auto t_build = Clock::now();
@@ -341,10 +336,13 @@ RunResult run_stage_motion_sweep(const Spec& spec, const RunOptions& opt) {
   const StageMotion& m = *spec.motion.stage;
   try {
     OCC_CATCH_SIGNALS
+    Sizing sizing;
+    sizing.shape = sizing_shape(spec.entity, &sizing.fit_err);
+    rep.seconds["entity"] = since(t_start);
     const auto* km = dynamic_cast<const KeyframeMotion*>(&m);
     auto segments = km ? km->screw_segments() : std::nullopt;
     // any other motion that is one screw goes to the screw engine
-    const std::optional<ScrewSegment> screw = km ? std::nullopt : m.as_screw(entity_radius(spec.entity));
+    const std::optional<ScrewSegment> screw = km ? std::nullopt : m.as_screw(radius_of(sizing.shape));
     if (screw) segments = std::vector<ScrewSegment>{*screw};
     // a ball slid along a line is a tube about its centre's path too (and the one-joint engine
     // stalls on a ball slid along the normal of its surface's seam plane)
@@ -352,7 +350,7 @@ RunResult run_stage_motion_sweep(const Spec& spec, const RunOptions& opt) {
       for (const auto& seg : *segments)
         if (seg.joint.type == JointType::Prismatic) segments.reset();
     if (segments) {
-      screw_segments_sweep(spec, m, *segments, opt, res);
+      screw_segments_sweep(spec, m, sizing, *segments, opt, res);
     } else if (spec.entity.kind == EntityKind::Sphere || spec.entity.dimension() <= 1) {
       // linear keyframes that are not screws turn at the poses: one smooth piece per segment
       std::vector<std::unique_ptr<KeyframeMotion>> segments;
@@ -367,9 +365,9 @@ RunResult run_stage_motion_sweep(const Spec& spec, const RunOptions& opt) {
         }
       }
       if (spec.entity.dimension() <= 1) {
-        low_dimension_stage_sweep(spec, m, pieces, opt, res);
+        low_dimension_stage_sweep(spec, m, sizing, pieces, opt, res);
       } else {
-        ball_stage_sweep(spec, m, pieces, opt, res);
+        ball_stage_sweep(spec, m, sizing, pieces, opt, res);
       }
     } else {
       throw ComputeError(std::string("a ") + to_string(spec.entity.kind) + " entity under a " +

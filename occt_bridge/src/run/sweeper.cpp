@@ -113,13 +113,12 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
     double fit_err = 0;
     // Parametric curves and surfaces are fitted once the tolerance is known; their extent comes
     // from a sampled stand-in (a polyline or a point cloud is enough for a bounding box).
-    const bool parametric = spec.entity.kind == EntityKind::Curve || spec.entity.kind == EntityKind::Surface;
-    TopoDS_Shape raw = parametric ? sampled_points(spec.entity) : entity_shape(spec.entity, 1e-9, &fit_err);
-    const double size = model_size(raw, motion);
+    const TopoDS_Shape sizing = sizing_shape(spec.entity, &fit_err);
+    const double size = model_size(sizing, motion);
     rep.tol_requested = spec.tolerance > 0 ? spec.tolerance : 1e-6 * size;
     const double tol = rep.tol_requested;
     const double fit_tol = 0.01 * tol;
-    if (parametric) raw = entity_shape(spec.entity, fit_tol, &fit_err);
+    TopoDS_Shape raw = fitted_entity_shape(spec.entity, sizing, fit_tol, &fit_err);
     rep.seconds["entity"] = since(t_start);
     std::unique_ptr<SignedDistance> sd = make_signed_distance(spec.entity);
     const std::unique_ptr<ParametricEntity> pe = ParametricEntity::make(spec.entity);

@@ -75,10 +75,10 @@ bool slides_along_itself(const EntitySpec& e, const Eigen::Isometry3d& G, const 
 /// True when x is in the image of (q, s) -> M(q) Gamma(s) over the joint box and the parameter
 /// box. A branch and bound over both boxes discards a sub-box when the gap |M(c) Gamma(s_c) - x|
 /// exceeds what the motion and the map can move within it, or when the first-order model at the
-/// centre stays farther from x than the second-order remainder allows (second_order_gap, which
-/// needs far smaller boxes near a fold of the map, where the swept set's boundary lies); membership is proved by a projected
-/// Gauss-Newton solve of M(q) Gamma(s) = x started in a surviving sub-box, converging to 1e-10 of
-/// `scale` inside the boxes. Sub-boxes smaller than `resolution` that no solve reaches count as
+/// centre stays farther from x than the second-order remainder allows (which, near a fold of the
+/// map where the swept set's boundary lies, discards far larger sub-boxes than the gap alone);
+/// membership is proved by a projected Gauss-Newton solve of M(q) Gamma(s) = x started in a
+/// surviving sub-box, converging to 1e-10 of `scale` inside the boxes. Sub-boxes smaller than `resolution` that no solve reaches count as
 /// outside (only points within about `resolution` of the boundary are at stake).
 bool in_swept_image(const ParametricEntity& entity, const Motion& motion, const Eigen::Vector3d& x,
                     double resolution, double scale);
