@@ -24,6 +24,7 @@
 #include <catch2/catch.hpp>
 
 #include "occt_bridge/sweeper.hpp"
+#include "base/internal.hpp"
 #include "faces/orbit_section.hpp"
 #include "util/random_one_joint.hpp"
 
@@ -190,6 +191,68 @@ TEST_CASE("Orbit sections: no arc where faces only meet at their boundaries, OCC
   ScrewJoint other = j;
   other.point.x() += 0.5;
   CHECK_FALSE(orbit_patch(turned(bent, j, 0.0, M_PI / 2), other, eps));
+}
+
+TEST_CASE("Orbit sections: helical sweeps of curves through one point cross along the helix through it") {
+  ScrewJoint j;
+  j.type = JointType::Helical;
+  j.point = Eigen::Vector3d(0.2, -0.1, 0);
+  j.direction = Eigen::Vector3d(0.1, 0.2, 1.0).normalized();
+  j.pitch = 0.3;
+  const double T = M_PI / 2, tol = 1e-7, eps = 1e-9;
+  // a segment and a spline that cross at P, each swept a quarter turn: one face each
+  const gp_Pnt P(1.5, 0.15, 0.05);
+  const TopoDS_Edge line = BRepBuilderAPI_MakeEdge(gp_Pnt(1, 0, -0.45), gp_Pnt(2, 0.3, 0.55)).Edge();
+  const TopoDS_Edge bent = spline_through({gp_Pnt(1.2, -0.4, 0.3), P, gp_Pnt(2.0, 0.5, -0.2)});
+  auto swept = [&](const TopoDS_Edge& e, double* err) {
+    double f, l;
+    const Handle(Geom_Curve) c = BRep_Tool::Curve(e, f, l);
+    const std::vector<TopoDS_Face> faces = occt::sweep_curve(c, f, l, j, T, tol, err);
+    REQUIRE(faces.size() == 1);
+    return faces.front();
+  };
+  double err = 0;
+  const TopoDS_Face a = swept(line, &err), b = swept(bent, &err);
+  const double btol = std::max(100 * eps, 10 * err);
+  CHECK_FALSE(orbit_patch(a, j, eps));  // (only with the fit's tolerance)
+  const auto pa = orbit_patch(a, j, eps, btol), pb = orbit_patch(b, j, eps, btol);
+  REQUIRE(pa);
+  REQUIRE(pb);
+  double section_err = 0;
+  const auto arcs = orbit_section(*pa, *pb, j, btol, &section_err);
+  REQUIRE(arcs);
+  REQUIRE(arcs->size() == 1);
+  CHECK(section_err <= 0.1 * btol);
+  // the helix through P over the quarter turn: sqrt(r^2 + pitch^2) per radian
+  const Eigen::Vector3d d = Eigen::Vector3d(P.X(), P.Y(), P.Z()) - j.point;
+  const double r = (d - j.direction * j.direction.dot(d)).norm();
+  CHECK(length(arcs->front()) == Approx(std::hypot(r, j.pitch) * T).epsilon(1e-6));
+  CHECK(length(arcs->front()) == Approx(section_length(a, b)).epsilon(1e-5));
+  double f, l;
+  const Handle(Geom_Curve) curve = BRep_Tool::Curve(arcs->front(), f, l);
+  for (double t : {0.0, 0.3, 0.5, 1.0}) {
+    const gp_Pnt x = curve->Value(f + t * (l - f));
+    const TopoDS_Vertex v = BRepBuilderAPI_MakeVertex(x).Vertex();
+    CHECK(distance(v, a) < 1e-6);
+    CHECK(distance(v, b) < 1e-6);
+    // on the helix through P: moved back to P's height it is P turned about the axis
+    const Eigen::Vector3d y = Eigen::Vector3d(x.X(), x.Y(), x.Z()) - j.point;
+    const double q = j.direction.dot(y - d) / j.pitch;
+    const Eigen::Vector3d back = Eigen::AngleAxisd(-q, j.direction) * (y - j.direction * (j.pitch * q));
+    CHECK((back - d).norm() < 1e-6);
+  }
+  // the spline moved a quarter turn on (its face begins where the segment's ends): they meet at a
+  // point at most
+  const TopoDS_Edge later = TopoDS::Edge(bent.Moved(TopLoc_Location(occt::to_trsf(j.transform(T)))));
+  const auto pc = orbit_patch(swept(later, &err), j, eps, btol);
+  REQUIRE(pc);
+  const auto none = orbit_section(*pa, *pc, j, btol);
+  REQUIRE(none);
+  CHECK(none->empty());
+  // another pitch: not a patch of this joint
+  ScrewJoint other = j;
+  other.pitch = 0.5;
+  CHECK_FALSE(orbit_patch(a, other, eps, btol));
 }
 
 TEST_CASE("Orbit sections: revolute and prismatic sweeps built with them and with OCCT's general sections agree", "[random]") {

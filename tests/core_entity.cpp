@@ -312,7 +312,9 @@ TEST_CASE("Entities: the signed distances and orbit solids of membership and orb
         R"({"kind": "box", "min": [0, 0, 0], "max": [1, 0.5, 0.7])" + pl + "}",
         R"({"kind": "cylinder", "base": [0, 0, 0], "axis": [1, 0, 1], "radius": 0.4, "height": 1.2)" + pl + "}",
         R"({"kind": "cone", "base": [0, 0, 0], "axis": [0, 1, 1], "radius1": 0.6, "radius2": 0.2, "height": 1)" + pl + "}",
-        R"({"kind": "torus", "center": [0, 0, 0], "axis": [0, 0, 1], "major": 1, "minor": 0.3)" + pl + "}"}) {
+        R"({"kind": "torus", "center": [0, 0, 0], "axis": [0, 0, 1], "major": 1, "minor": 0.3)" + pl + "}",
+        R"({"kind": "elliptic_cylinder", "base": [0.1, 0, 0], "axis": [1, 1, 0], "a": 0.8, "b": 0.3, "height": 1.1,
+            "twist": 0.4)" + pl + "}"}) {
     INFO(json);
     const EntitySpec spec = parse_spec(R"({"sweep": 1, "entity": )" + json +
                                            R"(, "motion": {"kind": "axes", "joints": [{"type": "prismatic",

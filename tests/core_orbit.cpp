@@ -22,6 +22,14 @@ ScrewJoint joint(JointType type, const Vector3d& point, const Vector3d& dir, dou
   return j;
 }
 
+/// A frame turned off every axis and moved off the origin.
+Eigen::Isometry3d tilted_frame() {
+  Eigen::Isometry3d F = Eigen::Isometry3d::Identity();
+  F.linear() = Eigen::AngleAxisd(0.7, Vector3d(1, 2, -0.5).normalized()).toRotationMatrix();
+  F.translation() = Vector3d(0.2, -0.3, 0.1);
+  return F;
+}
+
 std::vector<std::pair<std::string, OrbitSolidPtr>> primitives() {
   return {{"box", orbit_box(Vector3d(0.3, -0.2, 0.1), Vector3d(1.4, 0.9, 0.8))},
           {"sphere", orbit_sphere(Vector3d(0.7, 0.2, -0.3), 0.6)},
@@ -29,6 +37,7 @@ std::vector<std::pair<std::string, OrbitSolidPtr>> primitives() {
           {"cone", orbit_cone(Vector3d(-0.2, 0.4, 0.1), Vector3d(-1, 0.5, 2).normalized(), 0.7, 0.1, 1.1)},
           {"pointed cone", orbit_cone(Vector3d(0.1, 0, 0), Vector3d(0, 1, 0), 0.5, 0.0, 0.9)},
           {"torus", orbit_torus(Vector3d(0.5, -0.1, 0.2), Vector3d(1, -1, 3).normalized(), 0.8, 0.25)},
+          {"elliptic cylinder", orbit_elliptic_cylinder(tilted_frame(), 0.9, 0.3, 1.2)},
           {"box minus cylinder",
            orbit_difference(orbit_box(Vector3d(0, 0, 0), Vector3d(2, 1, 0.5)),
                             orbit_cylinder(Vector3d(1, 0.5, -1), Vector3d(0, 0, 1), 0.3, 3))}};
@@ -113,6 +122,12 @@ TEST_CASE("Orbit volume: one-joint sweeps against closed forms") {
        M_PI * 2 * std::sqrt(std::pow(10 * M_PI, 2) + 9) + 4.0 / 3 * M_PI},
       {"torus turned about its own axis (itself)", orbit_torus(Vector3d(0, 0, 0.3), Vector3d::UnitZ(), 2, 0.5),
        joint(JointType::Revolute, Vector3d::Zero(), Vector3d::UnitZ()), 1.0, 2 * M_PI * M_PI * 2 * 0.25},
+      {"elliptic cylinder slid along its a axis", orbit_elliptic_cylinder(tilted_frame(), 0.9, 0.3, 1.2),
+       joint(JointType::Prismatic, Vector3d::Zero(), tilted_frame().linear().col(0)), 2,
+       M_PI * 0.9 * 0.3 * 1.2 + 2 * (2 * 0.3 * 1.2)},
+      {"elliptic cylinder a half turn about its axis", orbit_elliptic_cylinder(tilted_frame(), 0.9, 0.3, 1.2),
+       joint(JointType::Revolute, tilted_frame().translation(), tilted_frame().linear().col(2)), M_PI,
+       M_PI * 0.9 * 0.9 * 1.2},
       {"box extruded obliquely", orbit_box(Vector3d(0, 0, 0), Vector3d(1, 2, 3)),
        joint(JointType::Prismatic, Vector3d::Zero(), Vector3d(1, 1, 0)), 2,
        6 + 2 * (3 * (1 + 2) / std::sqrt(2.0))},

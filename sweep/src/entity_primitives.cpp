@@ -1,6 +1,6 @@
 // The primitive solids as entities: sphere, box, cylinder, cone, torus and elliptic cylinder, each
-// with exact boxes, faces and creased edges, a distance bound and (but the elliptic cylinder) an
-// orbit solid.
+// with exact boxes, faces and creased edges, a distance bound and an orbit solid (those two but for
+// a twisted elliptic cylinder).
 #include <cmath>
 #include <string>
 
@@ -227,6 +227,10 @@ std::shared_ptr<BuiltEntity> make_elliptic_cylinder(const EntitySpec& e) {
       const double side = std::min(A, B) * (std::hypot(l.dot(X) / A, l.dot(Y) / B) - 1.0);
       return std::max(slab, side);
     });
+    Eigen::Isometry3d local = Eigen::Isometry3d::Identity();
+    local.linear() << X, Y, Z;
+    local.translation() = base;
+    s->orbit_ = orbit_placed(orbit_elliptic_cylinder(local, A, B, h), e.placement);
   }
   // a section's box: exact when untwisted, else that of the circle about it
   Vector3d X0, Y0;

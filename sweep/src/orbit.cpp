@@ -245,6 +245,22 @@ struct FrustumG {
   }
 };
 
+/// Elliptic cylinder on the local z axis from z = 0 to h, semi-axes a along local x and b along y.
+struct EllipticG {
+  double a, b, h;
+  static constexpr int count() { return 3; }
+  template <class T>
+  void values(const T& x, const T& y, const T& z, double m, T* out) const {
+    // the ellipse scaled by 1 + m / min(a, b) holds every point within m of it (its support
+    // function grows by at least m in every direction)
+    const double s = 1 + m / std::min(a, b);
+    out[0] = x * x * (1 / (a * a)) + y * y * (1 / (b * b)) - s * s;
+    out[1] = -z - m;
+    out[2] = z - (h + m);
+  }
+  Eigen::AlignedBox3d box() const { return Eigen::AlignedBox3d(Eigen::Vector3d(-a, -b, 0), Eigen::Vector3d(a, b, h)); }
+};
+
 /// Torus about the local z axis.
 struct TorusG {
   double R, r;
@@ -357,6 +373,9 @@ OrbitSolidPtr orbit_cylinder(const Eigen::Vector3d& base, const Eigen::Vector3d&
 }
 OrbitSolidPtr orbit_cone(const Eigen::Vector3d& base, const Eigen::Vector3d& axis, double r1, double r2, double height) {
   return std::make_shared<Primitive<FrustumG>>(FrustumG{r1, r2, height}, frame_on_axis(base, axis));
+}
+OrbitSolidPtr orbit_elliptic_cylinder(const Eigen::Isometry3d& frame, double a, double b, double height) {
+  return std::make_shared<Primitive<EllipticG>>(EllipticG{a, b, height}, frame);
 }
 OrbitSolidPtr orbit_torus(const Eigen::Vector3d& centre, const Eigen::Vector3d& axis, double major, double minor) {
   return std::make_shared<Primitive<TorusG>>(TorusG{major, minor}, frame_on_axis(centre, axis));

@@ -539,13 +539,14 @@ BoundarySweep boundary_sweep(const TopoDS_Shape& body, const ScrewJoint& j, doub
   // from their profiles
   std::vector<std::optional<OrbitPatch>> carried(n);
   if (settings.orbit_sections)
-    for (std::size_t i = 0; i < n; ++i) carried[i] = orbit_patch(cands[i].face, j, eps);
+    for (std::size_t i = 0; i < n; ++i) carried[i] = orbit_patch(cands[i].face, j, eps, boundary_tol);
   parallel_for(pairs.size(), [&]() -> std::function<void(std::size_t)> {
     return [&](std::size_t k) {
       const TopoDS_Face& fa = cands[pairs[k].first].face;
       const TopoDS_Face& fb = cands[pairs[k].second].face;
       if (carried[pairs[k].first] && carried[pairs[k].second]) {
-        if (auto arcs = orbit_section(*carried[pairs[k].first], *carried[pairs[k].second], j, boundary_tol)) {
+        if (auto arcs = orbit_section(*carried[pairs[k].first], *carried[pairs[k].second], j, boundary_tol,
+                                      &pair_refit_error[k])) {
           pair_edges[k] = std::move(*arcs);
           pair_sides[k].assign(pair_edges[k].size(), 3);
           return;

@@ -12,7 +12,11 @@
 #include <BRepTools.hxx>
 #include <BRep_Tool.hxx>
 #include <Geom2d_Curve.hxx>
+#include <Geom_BSplineCurve.hxx>
 #include <Geom_Circle.hxx>
+#include <GeomAPI_PointsToBSpline.hxx>
+#include <GeomAPI_ProjectPointOnCurve.hxx>
+#include <TColgp_Array1OfPnt.hxx>
 #include <TopExp_Explorer.hxx>
 #include <TopoDS.hxx>
 #include <gp_Ax2.hxx>
@@ -22,48 +26,78 @@
 #include <cmath>
 
 #include "base/internal.hpp"
+#include "faces/section_refit.hpp"
 
 namespace sweep::occt {
 
 namespace {
 
 /// The joint's orbits: circles about a revolute joint's axis, lines along a prismatic joint's
-/// direction. A point has two coordinates across the orbits (its profile point: (r, z) about the
-/// axis, or its projection on the plane through `p0` across the direction) and one along them (an
-/// angle about the axis, or a distance along the direction).
+/// direction, helices about a helical joint's axis. A point has two coordinates across the orbits
+/// (its profile point: (r, z) about the axis; its projection on the plane through `p0` across the
+/// direction; the point where its helix meets the plane through the axis point across the axis,
+/// in that plane) and one along them (an angle about the axis; a distance along the direction; the
+/// joint parameter that carries that point of the plane to it).
 struct OrbitFrame {
-  bool turning;
+  bool turning;  ///< circles (the coordinate along them is periodic)
+  bool helix;    ///< helices (`h`: their advance per radian)
+  double h;
   Eigen::Vector3d p0, w, e1, e2;
   explicit OrbitFrame(const ScrewJoint& j)
-      : turning(j.type == JointType::Revolute), p0(j.type == JointType::Revolute ? j.point : Eigen::Vector3d::Zero()),
-        w(j.direction.normalized()), e1(w.unitOrthogonal()), e2(w.cross(e1)) {}
+      : turning(j.type == JointType::Revolute),
+        helix(j.type == JointType::Helical),
+        h(j.type == JointType::Helical ? j.pitch : 0.0),
+        p0(j.type != JointType::Prismatic ? j.point : Eigen::Vector3d::Zero()),
+        w(j.direction.normalized()),
+        e1(w.unitOrthogonal()),
+        e2(w.cross(e1)) {}
   Eigen::Vector3d radial(const Eigen::Vector3d& x) const {
     const Eigen::Vector3d d = x - p0;
     return d - w * w.dot(d);
   }
   /// The coordinate along the orbit through x.
   double along(const Eigen::Vector3d& x) const {
+    if (helix) return w.dot(x - p0) / h;
     if (!turning) return w.dot(x - p0);
     const Eigen::Vector3d r = radial(x);
     return std::atan2(e2.dot(r), e1.dot(r));
   }
   /// x moved by s along its orbit.
   Eigen::Vector3d moved(const Eigen::Vector3d& x, double s) const {
+    if (helix) return p0 + Eigen::AngleAxisd(s, w) * (x - p0) + w * (h * s);
     return turning ? Eigen::Vector3d(p0 + Eigen::AngleAxisd(s, w) * (x - p0)) : Eigen::Vector3d(x + s * w);
   }
   /// The profile point of x, and its derivative along dx.
   std::pair<Eigen::Vector2d, Eigen::Vector2d> across(const Eigen::Vector3d& x, const Eigen::Vector3d& dx) const {
     const Eigen::Vector3d d = x - p0;
+    if (helix) {
+      // back along the helix to the plane: y = R(-q) rho, dy = R(-q) drho - dq w x y
+      const double q = w.dot(d) / h, dq = w.dot(dx) / h;
+      const Eigen::AngleAxisd back(-q, w);
+      const Eigen::Vector3d y = back * (d - w * w.dot(d));
+      const Eigen::Vector3d dy = back * (dx - w * w.dot(dx)) - dq * w.cross(y);
+      return {{e1.dot(y), e2.dot(y)}, {e1.dot(dy), e2.dot(dy)}};
+    }
     if (!turning) return {{e1.dot(d), e2.dot(d)}, {e1.dot(dx), e2.dot(dx)}};
     const double z = w.dot(d), dz = w.dot(dx);
     const Eigen::Vector3d rho = d - w * z, drho = dx - w * dz;
     const double r = rho.norm();
     return {{r, z}, {r > 0 ? rho.dot(drho) / r : drho.norm(), dz}};
   }
+  /// The point of the helix through profile point m at coordinate q along it, and its tangent.
+  std::pair<Eigen::Vector3d, Eigen::Vector3d> on_helix(const Eigen::Vector2d& m, double q) const {
+    const Eigen::Vector3d y = Eigen::AngleAxisd(q, w) * (e1 * m(0) + e2 * m(1));
+    return {p0 + y + w * (h * q), w.cross(y) + w * h};
+  }
   /// The shortest piece of range overlap worth an edge, at profile point m.
-  double min_length(const Eigen::Vector2d& m, double tol) const { return turning ? tol / std::max(m(0), tol) : tol; }
-  /// The orbit arc at profile point m over [start, start + len] of the coordinate along it.
+  double min_length(const Eigen::Vector2d& m, double tol) const {
+    if (helix) return tol / std::max(std::hypot(m.norm(), h), tol);
+    return turning ? tol / std::max(m(0), tol) : tol;
+  }
+  /// The orbit arc at profile point m over [start, start + len] of the coordinate along it (none
+  /// for helices: helix_section() makes those on the faces' own surfaces).
   std::optional<TopoDS_Edge> arc(const Eigen::Vector2d& m, double start, double len) const {
+    if (helix) return std::nullopt;
     if (!turning) {
       const Eigen::Vector3d base = p0 + e1 * m(0) + e2 * m(1);
       BRepBuilderAPI_MakeEdge mk(to_pnt(base + w * start), to_pnt(base + w * (start + len)));
@@ -221,13 +255,67 @@ bool bounded_by_its_box(const TopoDS_Face& face, double u0, double u1, double v0
   return true;
 }
 
+/// Face p's parameters at profile parameter b and coordinate q along the orbits.
+gp_Pnt2d patch_uv(const Carried& p, const OrbitFrame& ax, double b, double q) {
+  Eigen::Vector3d x, dx;
+  p.at(p.p.a0, b, x, dx);
+  const double a = p.p.a0 + (q - ax.along(x)) / p.p.rate;
+  return p.p.orbit_is_u ? gp_Pnt2d(a, b) : gp_Pnt2d(b, a);
+}
+
+/// The curve where patches a and b cross along the helix through profile point m (profile
+/// parameters ba and bb) over [start, start + len]: points of the helix moved onto both faces'
+/// surfaces (fitted ones stray from the helix by their fit error) and a B-spline through them,
+/// within `tol` of both between its points. Nothing when a point does not converge or strays
+/// more than `stray` from the helix. *err: the curve's largest distance from the crossing.
+std::optional<TopoDS_Edge> helix_section(const Carried& a, const Carried& b, const OrbitFrame& ax, const Eigen::Vector2d& m,
+                                         double ba, double bb, double start, double len, double tol, double stray,
+                                         double* err) {
+  auto crossing = [&](double q) -> std::optional<gp_Pnt> {
+    const auto [x, t] = ax.on_helix(m, q);
+    const auto p = point_on_both(a.surface, b.surface, to_pnt(x), to_vec(t.normalized()), patch_uv(a, ax, ba, q),
+                                 patch_uv(b, ax, bb, q), tol);
+    if (!p || to_eigen(*p).cwiseAbs().maxCoeff() > 1e300 || (to_eigen(*p) - x).norm() > stray) return std::nullopt;
+    return p;
+  };
+  const int quarter_turns = std::max(1, int(std::ceil(len / (0.5 * M_PI))));
+  for (int n = 8 * quarter_turns; n <= 128 * quarter_turns; n *= 2) {
+    TColgp_Array1OfPnt pts(1, n + 1);
+    for (int k = 0; k <= n; ++k) {
+      const auto p = crossing(start + len * k / n);
+      if (!p) return std::nullopt;
+      pts.SetValue(k + 1, *p);
+    }
+    GeomAPI_PointsToBSpline fit(pts, 3, 8, GeomAbs_C2, 0.1 * tol);
+    if (!fit.IsDone()) continue;
+    const Handle(Geom_BSplineCurve) curve = fit.Curve();
+    double worst = 0;
+    for (int k = 0; k < n; ++k) {
+      const auto p = crossing(start + len * (k + 0.5) / n);
+      if (!p) return std::nullopt;
+      GeomAPI_ProjectPointOnCurve proj(*p, curve);
+      if (proj.NbPoints() == 0) return std::nullopt;
+      worst = std::max(worst, proj.LowerDistance());
+    }
+    if (worst > tol) continue;
+    BRepBuilderAPI_MakeEdge mk(curve);
+    if (!mk.IsDone()) return std::nullopt;
+    *err = std::max(*err, worst);
+    return mk.Edge();
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
-std::optional<OrbitPatch> orbit_patch(const TopoDS_Face& face, const ScrewJoint& j, double eps) {
-  if (j.type == JointType::Helical) return std::nullopt;
+std::optional<OrbitPatch> orbit_patch(const TopoDS_Face& face, const ScrewJoint& j, double eps, double helix_tol) {
+  const bool helix = j.type == JointType::Helical;
+  if (helix && !(helix_tol > 0 && std::abs(j.pitch) > 0)) return std::nullopt;
+  if (helix) eps = helix_tol;
   const bool turning = j.type == JointType::Revolute;
   const BRepAdaptor_Surface surface(face, false);
-  switch (surface.GetType()) {
+  if (helix && surface.GetType() != GeomAbs_BSplineSurface) return std::nullopt;
+  if (!helix) switch (surface.GetType()) {
     case GeomAbs_SurfaceOfRevolution:
     case GeomAbs_Cone:
     case GeomAbs_Sphere:
@@ -278,8 +366,8 @@ std::optional<OrbitPatch> orbit_patch(const TopoDS_Face& face, const ScrewJoint&
       return p;
     }
     const double b = 0.5 * (p.b0 + p.b1);
-    const double rate = ax.w.dot(point(p.a1, b) - point(p.a0, b)) / da;
-    if (std::abs(rate) * da > 1e3 * eps && follows(rate)) {
+    const double rate = (ax.along(point(p.a1, b)) - ax.along(point(p.a0, b))) / da;
+    if (std::abs(rate) * da > (helix ? 1e-6 : 1e3 * eps) && follows(rate)) {
       p.rate = rate;
       return p;
     }
@@ -358,7 +446,7 @@ TopoDS_Face on_own_sheet(const TopoDS_Face& piece, const Handle(Geom_Surface)& s
 }
 
 std::optional<std::vector<TopoDS_Edge>> orbit_section(const OrbitPatch& patch_a, const OrbitPatch& patch_b,
-                                                      const ScrewJoint& j, double boundary_tol) {
+                                                      const ScrewJoint& j, double boundary_tol, double* fit_err) {
   const OrbitFrame ax(j);
   const Carried a(patch_a), b(patch_b);
   constexpr int N = kSamples;
@@ -433,7 +521,11 @@ std::optional<std::vector<TopoDS_Edge>> orbit_section(const OrbitPatch& patch_a,
     const auto [sa, la] = orbit_range(a, ax, root.ba);
     const auto [sb, lb] = orbit_range(b, ax, root.bb);
     for (const auto& [start, len] : overlapping_ranges(ax, sa, la, sb, lb, ax.min_length(root.m, boundary_tol))) {
-      const std::optional<TopoDS_Edge> e = ax.arc(root.m, start, len);
+      double err = 0;
+      const std::optional<TopoDS_Edge> e =
+          ax.helix ? helix_section(a, b, ax, root.m, root.ba, root.bb, start, len, 0.1 * boundary_tol, boundary_tol, &err)
+                   : ax.arc(root.m, start, len);
+      if (fit_err) *fit_err = std::max(*fit_err, err);
       if (!e) return std::nullopt;
       out.push_back(*e);
     }

@@ -1,6 +1,7 @@
 #pragma once
 // Where two faces swept along one joint's orbits cross. A revolute joint's orbits are circles about
-// its axis, a prismatic joint's are lines along its direction. A face that is a rectangle in the
+// its axis, a prismatic joint's are lines along its direction, a helical joint's are helices (whose
+// profiles lie in a plane across the axis: faces whose profiles never meet there never cross). A face that is a rectangle in the
 // parameters of a surface one of whose parameters runs along the orbits (a curve's sweep by the
 // joint: surfaces of revolution, coaxial cylinders, cones, spheres and tori under a revolute joint;
 // extrusions, planes and cylinders along a prismatic joint's direction) is a profile curve in the
@@ -30,10 +31,12 @@ struct OrbitPatch {
   double rate = 1;
 };
 
-/// The face as an orbit patch of joint j (revolute or prismatic), or nothing when it is not one:
-/// moving along its orbit parameter must move its points along the joint's orbits (checked at
-/// sample points to `eps`) and its boundary must be the four iso-lines of its parameter box.
-std::optional<OrbitPatch> orbit_patch(const TopoDS_Face& face, const ScrewJoint& j, double eps);
+/// The face as an orbit patch of joint j, or nothing when it is not one: moving along its orbit
+/// parameter must move its points along the joint's orbits (checked at sample points to `eps`)
+/// and its boundary must be the four iso-lines of its parameter box. Under a helical joint only
+/// with `helix_tol` > 0: a B-spline face fitted to a helical sweep, whose points follow the helices
+/// to `helix_tol` (its fit error).
+std::optional<OrbitPatch> orbit_patch(const TopoDS_Face& face, const ScrewJoint& j, double eps, double helix_tol = 0);
 
 /// The profile parameters where the patch's profile crosses itself over a common range of the
 /// orbits (the face passes through itself there, as the extrusion of a curve whose projection along
@@ -59,9 +62,11 @@ TopoDS_Face on_own_sheet(const TopoDS_Face& piece, const Handle(Geom_Surface)& s
 
 /// The orbit arcs where patches a and b cross, leaving out arcs on either's boundary (within
 /// `boundary_tol`), or nothing when their profiles touch, run along each other or cross at a
-/// small angle: the caller then intersects the faces in general. Safe to call from several
-/// threads at once.
+/// small angle: the caller then intersects the faces in general. Under a helical joint the arcs
+/// are the curves where the faces' own (fitted) surfaces cross along those helices, each within
+/// a tenth of `boundary_tol` of both (the largest such distance goes to *fit_err when given).
+/// Safe to call from several threads at once.
 std::optional<std::vector<TopoDS_Edge>> orbit_section(const OrbitPatch& a, const OrbitPatch& b, const ScrewJoint& j,
-                                                      double boundary_tol);
+                                                      double boundary_tol, double* fit_err = nullptr);
 
 }  // namespace sweep::occt

@@ -21,11 +21,7 @@
 
 namespace sweep::occt {
 
-namespace {
-
-/// The point of the intersection of surfaces A and B in the plane through p normal to t, by Newton
-/// from parameters (ua, va) on A and (ub, vb) on B; nothing when it does not converge.
-std::optional<gp_Pnt> on_both(const BRepAdaptor_Surface& A, const BRepAdaptor_Surface& B, const gp_Pnt& p,
+std::optional<gp_Pnt> point_on_both(const BRepAdaptor_Surface& A, const BRepAdaptor_Surface& B, const gp_Pnt& p,
                               const gp_Vec& t, gp_Pnt2d uva, gp_Pnt2d uvb, double tol) {
   Eigen::Vector4d x(uva.X(), uva.Y(), uvb.X(), uvb.Y());
   const Eigen::Vector3d tt = to_eigen(t), pp = to_eigen(p);
@@ -53,8 +49,6 @@ std::optional<gp_Pnt> on_both(const BRepAdaptor_Surface& A, const BRepAdaptor_Su
   return std::nullopt;
 }
 
-}  // namespace
-
 TopoDS_Edge refitted_section_edge(const TopoDS_Edge& e, const TopoDS_Face& a, const TopoDS_Face& b, double tol,
                                   double above, double* err) {
   *err = 0;
@@ -74,7 +68,7 @@ TopoDS_Edge refitted_section_edge(const TopoDS_Edge& e, const TopoDS_Face& a, co
     gp_Vec t;
     c->D1(s, p, t);
     if (t.Magnitude() == 0) return std::nullopt;
-    const auto q = on_both(A, B, p, t.Normalized(), pa->Value(s), pb->Value(s), tol);
+    const auto q = point_on_both(A, B, p, t.Normalized(), pa->Value(s), pb->Value(s), tol);
     if (!q || q->Distance(p) > stray) return std::nullopt;
     return q;
   };

@@ -54,7 +54,8 @@ class OrbitSolid {
 };
 using OrbitSolidPtr = std::shared_ptr<const OrbitSolid>;
 
-/// The orbit solid of a primitive entity (sphere, box, cylinder, cone, torus) with its placement
+/// The orbit solid of a primitive entity (sphere, box, cylinder, cone, torus, untwisted elliptic
+/// cylinder) with its placement
 /// (Entity::orbit_solid()); nullptr for other kinds.
 OrbitSolidPtr make_orbit_solid(const EntitySpec& e);
 
@@ -65,6 +66,9 @@ OrbitSolidPtr orbit_sphere(const Eigen::Vector3d& centre, double radius);
 /// Cylinder from `base` along unit `axis`, and the frustum from radius r1 at base to r2 at height.
 OrbitSolidPtr orbit_cylinder(const Eigen::Vector3d& base, const Eigen::Vector3d& axis, double radius, double height);
 OrbitSolidPtr orbit_cone(const Eigen::Vector3d& base, const Eigen::Vector3d& axis, double r1, double r2, double height);
+/// Elliptic cylinder from the origin of `frame` along its z axis, semi-axis a along its x axis and b
+/// along its y axis (frame: a rigid map from local to given coordinates).
+OrbitSolidPtr orbit_elliptic_cylinder(const Eigen::Isometry3d& frame, double a, double b, double height);
 OrbitSolidPtr orbit_torus(const Eigen::Vector3d& centre, const Eigen::Vector3d& axis, double major, double minor);
 OrbitSolidPtr orbit_union(std::vector<OrbitSolidPtr> parts);
 OrbitSolidPtr orbit_intersection(std::vector<OrbitSolidPtr> parts);
