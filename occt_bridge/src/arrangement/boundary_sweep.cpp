@@ -256,6 +256,9 @@ struct Candidate {
   int variety = -1;
   enum class Kind { Start, End, Swept } kind = Kind::Swept;
   Handle(Geom_Surface) sheet;  ///< a piece of a face through itself: the sheet it lies on
+  /// Faces of one arrangement of candidates on one surface share a group (>= 0): they meet only
+  /// along their edges, so no section between them is needed.
+  int group = -1;
 };
 
 /// The candidates with each face swept along the joint's orbits whose profile crosses itself (an
@@ -269,7 +272,7 @@ std::vector<Candidate> cut_where_through_itself(const std::vector<Candidate>& ca
       if (const auto patch = orbit_patch(c.face, j, eps)) {
         const std::vector<double> at = profile_self_crossings(*patch, j, boundary_tol);
         const std::vector<PatchPiece> pieces = at.empty() ? std::vector<PatchPiece>{} : patch_pieces(*patch, at);
-        for (const PatchPiece& pp : pieces) out.push_back({pp.face, c.variety, c.kind, pp.sheet});
+        for (const PatchPiece& pp : pieces) out.push_back({pp.face, c.variety, c.kind, pp.sheet, c.group});
         if (!pieces.empty()) continue;
       }
     out.push_back(c);
@@ -508,7 +511,7 @@ BoundarySweep boundary_sweep(const TopoDS_Shape& body, const ScrewJoint& j, doub
       // (the arrangement's faces may cross the start or the end copy: they are swept regions now)
       const Candidate& first = cands[members[0]];
       for (int k = 1; k <= faces.Extent(); ++k)
-        merged.push_back({TopoDS::Face(faces(k)), first.variety, Candidate::Kind::Swept, {}});
+        merged.push_back({TopoDS::Face(faces(k)), first.variety, Candidate::Kind::Swept, {}, r});
     }
     cands.swap(merged);
   }
@@ -518,7 +521,8 @@ BoundarySweep boundary_sweep(const TopoDS_Shape& body, const ScrewJoint& j, doub
   out.seconds["groups"] = since(t_groups);
 
   // 4. Where candidates cross: the section of every pair whose boxes meet (the start copies among
-  //    themselves and the end copies among themselves are faces of one solid and do not cross).
+  //    themselves and the end copies among themselves are faces of one solid and do not cross, nor
+  //    do the faces of one group's arrangement).
   const auto t_sec = Clock::now();
   const std::size_t n = cands.size();
   std::vector<Bnd_Box> boxes(n);
@@ -527,6 +531,7 @@ BoundarySweep boundary_sweep(const TopoDS_Shape& body, const ScrewJoint& j, doub
   for (std::size_t a = 0; a < n; ++a)
     for (std::size_t b = a + 1; b < n; ++b) {
       if (cands[a].kind != Candidate::Kind::Swept && cands[a].kind == cands[b].kind) continue;
+      if (cands[a].group >= 0 && cands[a].group == cands[b].group) continue;
       if (boxes[a].IsOut(boxes[b])) continue;
       pairs.push_back({a, b});
     }

@@ -306,6 +306,28 @@ std::optional<TopoDS_Edge> helix_section(const Carried& a, const Carried& b, con
   return std::nullopt;
 }
 
+/// Whether a face on a surface of this type can be swept along the joint's orbits: surfaces of
+/// revolution under a revolute joint, extrusions and planes under a prismatic one, cylinders under
+/// either, and under a helical joint the B-splines its sweeps are fitted as.
+bool may_follow_orbits(GeomAbs_SurfaceType type, JointType joint) {
+  switch (type) {
+    case GeomAbs_SurfaceOfRevolution:
+    case GeomAbs_Cone:
+    case GeomAbs_Sphere:
+    case GeomAbs_Torus:
+      return joint == JointType::Revolute;
+    case GeomAbs_SurfaceOfExtrusion:
+    case GeomAbs_Plane:
+      return joint == JointType::Prismatic;
+    case GeomAbs_Cylinder:
+      return joint != JointType::Helical;
+    case GeomAbs_BSplineSurface:
+      return joint == JointType::Helical;
+    default:
+      return false;
+  }
+}
+
 }  // namespace
 
 std::optional<OrbitPatch> orbit_patch(const TopoDS_Face& face, const ScrewJoint& j, double eps, double helix_tol) {
@@ -314,23 +336,7 @@ std::optional<OrbitPatch> orbit_patch(const TopoDS_Face& face, const ScrewJoint&
   if (helix) eps = helix_tol;
   const bool turning = j.type == JointType::Revolute;
   const BRepAdaptor_Surface surface(face, false);
-  if (helix && surface.GetType() != GeomAbs_BSplineSurface) return std::nullopt;
-  if (!helix) switch (surface.GetType()) {
-    case GeomAbs_SurfaceOfRevolution:
-    case GeomAbs_Cone:
-    case GeomAbs_Sphere:
-    case GeomAbs_Torus:
-      if (!turning) return std::nullopt;
-      break;
-    case GeomAbs_SurfaceOfExtrusion:
-    case GeomAbs_Plane:
-      if (turning) return std::nullopt;
-      break;
-    case GeomAbs_Cylinder:
-      break;
-    default:
-      return std::nullopt;
-  }
+  if (!may_follow_orbits(surface.GetType(), j.type)) return std::nullopt;
   double u0, u1, v0, v1;
   BRepTools::UVBounds(face, u0, u1, v0, v1);
   if (!(u1 - u0 > 0) || !(v1 - v0 > 0)) return std::nullopt;

@@ -1,5 +1,12 @@
 // The checks of a solid that use its own boundary (see solid_checks.hpp).
 #include <BRepAdaptor_Surface.hxx>
+#include <BRepBuilderAPI_Copy.hxx>
+#include <BRepTools.hxx>
+#include <BRep_Builder.hxx>
+#include <GeomConvert.hxx>
+#include <Geom_BSplineSurface.hxx>
+#include <Geom_RectangularTrimmedSurface.hxx>
+#include <Standard_Failure.hxx>
 #include <BRepCheck_Analyzer.hxx>
 #include <BRepExtrema_DistShapeShape.hxx>
 #include <BRepGProp_Domain.hxx>
@@ -22,9 +29,57 @@ namespace sweep::occt {
 
 namespace {
 
+/// The face on an exact B-spline form of its surface when that is an extrusion of a curve other than
+/// a line, circle or conic (the same parameters, so its curves on the surface hold as they are);
+/// the face itself otherwise. OCCT's adaptive volume integral takes an extrusion's basis curve as
+/// one smooth span and can stop on a wrong value (1.5e-5 of a torus extruded, depending on the
+/// point integrated about); on the B-spline form it integrates span by span.
+TopoDS_Face integrable_face(const TopoDS_Face& f) {
+  const BRepAdaptor_Surface S(f, false);
+  if (S.GetType() != GeomAbs_SurfaceOfExtrusion) return f;
+  const GeomAbs_CurveType basis = S.BasisCurve()->GetType();
+  if (basis != GeomAbs_BSplineCurve && basis != GeomAbs_BezierCurve && basis != GeomAbs_OtherCurve) return f;
+  double u0, u1, v0, v1;
+  BRepTools::UVBounds(f, u0, u1, v0, v1);
+  TopLoc_Location loc;
+  const Handle(Geom_Surface) surface = BRep_Tool::Surface(f, loc);
+  try {
+    const double du = 1e-9 * (u1 - u0), dv = 1e-3 * (v1 - v0) + 1e-9;
+    const Handle(Geom_BSplineSurface) b = GeomConvert::SurfaceToBSplineSurface(new Geom_RectangularTrimmedSurface(
+        surface, std::max(u0 - du, S.FirstUParameter()), std::min(u1 + du, S.LastUParameter()), v0 - dv, v1 + dv));
+    // the same parameters: points agree to rounding
+    for (double a : {0.0, 0.3, 0.7, 1.0})
+      for (double c : {0.0, 0.6, 1.0}) {
+        const double u = u0 + a * (u1 - u0), v = v0 + c * (v1 - v0);
+        const gp_Pnt p = surface->Value(u, v);
+        if (p.Distance(b->Value(u, v)) > 1e-12 * (1 + p.XYZ().Modulus())) return f;
+      }
+    TopoDS_Face g = TopoDS::Face(BRepBuilderAPI_Copy(f).Shape());
+    BRep_Builder bb;
+    for (TopExp_Explorer ex(g, TopAbs_EDGE); ex.More(); ex.Next()) {
+      const TopoDS_Edge& e = TopoDS::Edge(ex.Current());
+      double first, last;
+      const Handle(Geom2d_Curve) pc = BRep_Tool::CurveOnSurface(e, g, first, last);
+      if (pc.IsNull()) return f;
+      if (BRep_Tool::IsClosed(e, g)) {
+        const Handle(Geom2d_Curve) pc2 = BRep_Tool::CurveOnSurface(TopoDS::Edge(e.Reversed()), g, first, last);
+        bb.UpdateEdge(e, pc, pc2, b, loc, BRep_Tool::Tolerance(e));
+      } else {
+        bb.UpdateEdge(e, pc, b, loc, BRep_Tool::Tolerance(e));
+      }
+      bb.Range(e, b, loc, first, last);
+    }
+    bb.UpdateFace(g, b, loc, BRep_Tool::Tolerance(g));
+    return g;
+  } catch (const Standard_Failure&) {
+    return f;
+  }
+}
+
 /// OCCT's volume integral of oriented faces, each about P (BRepGProp's adaptive Gauss integration,
-/// face by face as BRepGProp::VolumeProperties does): the volume and the first moment about the
-/// origin add to those of the other faces taken about the same P.
+/// face by face as BRepGProp::VolumeProperties does, extrusions of splines on their B-spline form):
+/// the volume and the first moment about the origin add to those of the other faces taken about
+/// the same P.
 void occt_volume_of_faces(const std::vector<TopoDS_Face>& faces, const gp_Pnt& P, double eps, double* volume,
                           gp_XYZ* moment) {
   BRepGProp_Face BF;
@@ -35,11 +90,12 @@ void occt_volume_of_faces(const std::vector<TopoDS_Face>& faces, const gp_Pnt& P
     if (f.Orientation() != TopAbs_FORWARD && f.Orientation() != TopAbs_REVERSED) continue;
     TopLoc_Location loc;
     if (BRep_Tool::Surface(f, loc).IsNull()) continue;
-    BF.Load(f);
-    if (f.NbChildren() == 0) {
+    const TopoDS_Face h = integrable_face(f);
+    BF.Load(h);
+    if (h.NbChildren() == 0) {
       G.Perform(BF, eps);
     } else {
-      BD.Init(f);
+      BD.Init(h);
       G.Perform(BF, BD, eps);
     }
     *volume += G.Mass();
