@@ -93,10 +93,11 @@ std::vector<double> axial_breaks(const Handle(Geom_Curve)& c, double first, doub
 
 /// A face's share of the divergence-theorem volume, (1/3) the integral of x . n over the face,
 /// signed by its orientation: computed by Green's theorem in the face's parameter domain along its
-/// pcurves. A solid's volume is the sum over its faces.
-double face_divergence(const TopoDS_Face& face);
+/// pcurves. A solid's volume is the sum over its faces, each taken about the same `origin` (one
+/// near the solid cancels least).
+double face_divergence(const TopoDS_Face& face, const gp_XYZ& origin = gp_XYZ(0, 0, 0));
 /// face_divergence and the face's area, integrated the same way at the same points.
-std::pair<double, double> face_divergence_and_area(const TopoDS_Face& face);
+std::pair<double, double> face_divergence_and_area(const TopoDS_Face& face, const gp_XYZ& origin = gp_XYZ(0, 0, 0));
 /// The area of one face by the same quadrature.
 double face_area(const TopoDS_Face& face);
 

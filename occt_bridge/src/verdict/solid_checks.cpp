@@ -162,7 +162,7 @@ SolidChecks check_solid(const TopoDS_Shape& result) {
       if (task < 2) {
         occt_volume_of_faces(part[task], gp_Pnt(P), 1e-10, &volume[task], &moment[task]);
       } else if (task >= 4) {
-        div_area[task - 4] = face_divergence_and_area(faces[task - 4].second);
+        div_area[task - 4] = face_divergence_and_area(faces[task - 4].second, P);
       } else if (task == 2) {
         c.box = shape_box(result);
       } else {
