@@ -1,9 +1,11 @@
 // Writes the random one-joint cases (tests/util/random_one_joint.hpp) as spec files with their
-// reference volumes, for bench/run_bench.sh:
-//   random_cases DIR [COUNT [SEED [REL_TOL [FILTER]]]]
+// reference volumes, for bench/run_bench.sh, or their references as a table for the tests:
+//   random_cases DIR [COUNT [SEED [REL_TOL|none [FILTER]]]]
+//   random_cases --table FILE FIRST COUNT SEED REL_TOL
 // FILTER keeps the cases whose name contains it (e.g. "helical", "torus_"). Each line printed gives
 // the reference's volume, its error estimate and the seconds it took. REL_TOL "none" writes the
-// specs alone.
+// specs alone. --table appends a line "SEED INDEX NAME VOLUME ERROR" for each case FIRST ..
+// FIRST + COUNT - 1 to FILE as soon as its reference is done (tests/data/random_one_joint.tsv).
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -12,9 +14,60 @@
 
 #include "util/random_one_joint.hpp"
 
+namespace {
+
+/// The case's reference volume and its error estimate, and the seconds they took.
+struct Reference {
+  double volume = 0, error = 0, seconds = 0;
+};
+
+Reference reference_of(const sweep::testing::RandomCase& c, double rel_tol, const std::string& dir) {
+  const sweep::Spec spec = sweep::parse_spec(c.spec, dir);
+  Reference r;
+  const auto t0 = std::chrono::steady_clock::now();
+  r.volume = sweep::testing::reference_volume(spec, rel_tol, &r.error);
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
+int write_table(int argc, char** argv) {
+  if (argc != 7) {
+    std::fprintf(stderr, "usage: random_cases --table FILE FIRST COUNT SEED REL_TOL\n");
+    return 2;
+  }
+  const std::string file = argv[2];
+  const int first = std::atoi(argv[3]), count = std::atoi(argv[4]);
+  const std::uint64_t seed = std::strtoull(argv[5], nullptr, 10);
+  const double rel_tol = std::atof(argv[6]);
+  if (first < 0 || count < 0 || !(rel_tol > 0 && rel_tol < 1)) {
+    std::fprintf(stderr, "random_cases: FIRST and COUNT must be >= 0 and REL_TOL in (0, 1)\n");
+    return 2;
+  }
+  for (int i = first; i < first + count; ++i) {
+    const sweep::testing::RandomCase c = sweep::testing::random_one_joint_case(seed, i);
+    const Reference r = reference_of(c, rel_tol, ".");
+    std::ofstream out(file, std::ios::app);
+    char line[256];
+    std::snprintf(line, sizeof line, "%llu %d %s %.15g %.3g\n", static_cast<unsigned long long>(seed), i, c.name.c_str(),
+                  r.volume, r.error);
+    out << line;
+    if (!out.flush()) {
+      std::fprintf(stderr, "random_cases: cannot write %s\n", file.c_str());
+      return 1;
+    }
+    std::printf("%s %.12g (+- %.2g) %.2f s\n", c.name.c_str(), r.volume, r.error, r.seconds);
+    std::fflush(stdout);
+  }
+  return 0;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
+  if (argc > 1 && std::string(argv[1]) == "--table") return write_table(argc, argv);
   if (argc < 2) {
-    std::fprintf(stderr, "usage: random_cases DIR [COUNT [SEED [REL_TOL|none [FILTER]]]]\n");
+    std::fprintf(stderr, "usage: random_cases DIR [COUNT [SEED [REL_TOL|none [FILTER]]]]\n"
+                         "       random_cases --table FILE FIRST COUNT SEED REL_TOL\n");
     return 2;
   }
   const std::string dir = argv[1];
@@ -35,15 +88,11 @@ int main(int argc, char** argv) {
       std::printf("%s\n", c.name.c_str());
       continue;
     }
-    const sweep::Spec spec = sweep::parse_spec(c.spec, dir);
-    double err = 0;
-    const auto t0 = std::chrono::steady_clock::now();
-    const double v = sweep::testing::reference_volume(spec, rel_tol, &err);
-    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const Reference r = reference_of(c, rel_tol, dir);
     char tail[160];
-    std::snprintf(tail, sizeof tail, ", \"_expected_volume\": %.15g, \"_reference_error\": %.3g}", v, err);
+    std::snprintf(tail, sizeof tail, ", \"_expected_volume\": %.15g, \"_reference_error\": %.3g}", r.volume, r.error);
     std::ofstream(dir + "/" + c.name + ".json") << c.spec.substr(0, c.spec.size() - 1) << tail << "\n";
-    std::printf("%s %.12g (+- %.2g) %.2f s\n", c.name.c_str(), v, err, s);
+    std::printf("%s %.12g (+- %.2g) %.2f s\n", c.name.c_str(), r.volume, r.error, r.seconds);
     std::fflush(stdout);
   }
   return 0;

@@ -261,7 +261,7 @@ TEST_CASE("Orbit sections: revolute and prismatic sweeps built with them and wit
   for (const int kind : {0, 1}) {  // (the generator's joint kinds: revolute, prismatic)
     int compared = 0;
     for (int i = 0; compared < 8 && i < 200; ++i) {
-      if ((i / 5) % 3 != kind || i % 5 == 4) continue;
+      if (testing::random_case_joint(i) != kind || testing::random_case_kind(i) == 4) continue;
       const testing::RandomCase c = testing::random_one_joint_case(17, i);
       const Spec spec = parse_spec(c.spec, ".");
       double ref_err = 0;
@@ -272,8 +272,12 @@ TEST_CASE("Orbit sections: revolute and prismatic sweeps built with them and wit
       off.settings.orbit_sections = false;
       const occt::RunResult a = occt::run_sweep(spec, on), b = occt::run_sweep(spec, off);
       INFO(c.name << ": " << c.spec << " ; " << a.report.message << " ; " << b.report.message);
+      // a solid within the requested tolerance of the true boundary is within it times the area
+      // of the true volume (a ball turned 40 degrees whose grazing circle is recognised to within
+      // the tolerance is 5.7e-6 off)
       for (const auto* r : {&a, &b})
-        if (r->report.ok()) CHECK(std::abs(r->report.volume_brep - ref) <= 1e-6 * ref + 3 * ref_err);
+        if (r->report.ok())
+          CHECK(std::abs(r->report.volume_brep - ref) <= r->report.tol_requested * r->report.area + 3 * ref_err);
       if (a.report.ok() && b.report.ok()) {
         ++compared;
         CHECK(std::abs(a.report.volume_brep - b.report.volume_brep) <= 2e-6 * ref);

@@ -1,8 +1,10 @@
 #pragma once
-// A seeded generator of one-joint sweeps of primitives (box, sphere, cylinder, cone, torus) about
-// axes through, beside and away from the entity, oblique or not, for revolute ranges up to 720
-// degrees, prismatic strokes and helical pitches from overlapping to far-apart turns. Each case is
-// a spec text (degrees), so it goes through the parser as a user's file does.
+// A seeded generator of one-joint sweeps of primitives (box, sphere, cylinder, cone, torus, elliptic
+// cylinder) about axes through, beside and away from the entity, oblique or not, for revolute
+// ranges up to 720 degrees, prismatic strokes and helical pitches from overlapping to far-apart
+// turns, 0.25 to 3 turns. Case i has entity kind i % 6 and joint kind (i / 6) % 3, so every 18
+// consecutive cases hold each pair once. Each case is a spec text (degrees), so it goes through
+// the parser as a user's file does.
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -14,6 +16,14 @@ struct RandomCase {
   std::string name;  ///< kind, joint type and index
   std::string spec;  ///< the spec's JSON
 };
+
+/// The entity kinds and joint types of the generator, in the order case indices cycle through them.
+inline const char* const kRandomKinds[] = {"box", "sphere", "cylinder", "cone", "torus", "elliptic_cylinder"};
+inline const char* const kRandomJoints[] = {"revolute", "prismatic", "helical"};
+inline constexpr int kRandomKindCount = 6;
+/// Case i's entity kind (an index into kRandomKinds) and joint type (into kRandomJoints).
+inline int random_case_kind(int index) { return index % kRandomKindCount; }
+inline int random_case_joint(int index) { return (index / kRandomKindCount) % 3; }
 
 inline RandomCase random_one_joint_case(std::uint64_t seed, int index) {
   std::mt19937_64 rng(seed * 1000003ULL + std::uint64_t(index));
@@ -39,8 +49,7 @@ inline RandomCase random_one_joint_case(std::uint64_t seed, int index) {
       }
     }
   };
-  static const char* kinds[] = {"box", "sphere", "cylinder", "cone", "torus"};
-  const std::string kind = kinds[index % 5];
+  const std::string kind = kRandomKinds[random_case_kind(index)];
   std::string entity;
   if (kind == "box") {
     const double x = in(-1, 0.5), y = in(-1, 0.5), z = in(-1, 0.5);
@@ -55,6 +64,10 @@ inline RandomCase random_one_joint_case(std::uint64_t seed, int index) {
     const bool pointed = uni(rng) < 0.3;
     entity = "{\"kind\": \"cone\", \"base\": " + vec(1) + ", \"axis\": " + unit() + ", \"radius1\": " + num(in(0.3, 0.9)) +
              ", \"radius2\": " + num(pointed ? 0.0 : in(0.1, 0.6)) + ", \"height\": " + num(in(0.5, 2)) + "}";
+  } else if (kind == "elliptic_cylinder") {
+    const double a = in(0.3, 1.0);
+    entity = "{\"kind\": \"elliptic_cylinder\", \"base\": " + vec(1) + ", \"axis\": " + unit() + ", \"a\": " + num(a) +
+             ", \"b\": " + num(a * in(0.25, 0.9)) + ", \"height\": " + num(in(0.5, 2)) + "}";
   } else {
     const double minor = in(0.15, 0.5);
     entity = "{\"kind\": \"torus\", \"center\": " + vec(1) + ", \"axis\": " + unit() +
@@ -64,8 +77,7 @@ inline RandomCase random_one_joint_case(std::uint64_t seed, int index) {
   const double reach = uni(rng) < 0.4 ? 0.5 : (uni(rng) < 0.5 ? 1.5 : 3.0);
   const std::string point = vec(reach);
   const std::string direction = uni(rng) < 0.3 ? "[0, 0, 1]" : unit();
-  static const char* types[] = {"revolute", "prismatic", "helical"};
-  const std::string type = types[(index / 5) % 3];
+  const std::string type = kRandomJoints[random_case_joint(index)];
   std::string joint = "{\"type\": \"" + type + "\", \"point\": " + point + ", \"direction\": " + direction;
   if (type == "revolute") {
     const double deg = uni(rng) < 0.1 ? 720.0 : in(20, 340);
