@@ -185,6 +185,10 @@ void parallel_for(std::size_t n, const std::function<std::function<void(std::siz
 /// How OCCT's splitter runs: on the machine's cores (the argument's sub-shapes may be modified in
 /// place), or on one thread leaving the argument as it is (for callers already in parallel_for).
 enum class SplitMode { Parallel, NonDestructive };
+/// A copy of `face` on `surface`, which has the same parameters as the face's own (a trimmed copy,
+/// an exact B-spline form): its curves on the surface, seams' pairs included, hold as they are.
+/// The face itself when one of its edges has no curve on its surface.
+TopoDS_Face face_on_surface(const TopoDS_Face& face, const Handle(Geom_Surface)& surface);
 /// `shape` split by the edges `tools` at fuzzy value `fuzzy`; null when OCCT fails.
 TopoDS_Shape split_by_edges(const TopoDS_Shape& shape, const TopTools_ListOfShape& tools, double fuzzy,
                             SplitMode mode);

@@ -4,9 +4,7 @@
 #include <BRepAdaptor_Surface.hxx>
 
 #include <BRepBuilderAPI_MakeEdge.hxx>
-#include <BRepBuilderAPI_Copy.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
-#include <BRep_Builder.hxx>
 #include <Geom_RectangularTrimmedSurface.hxx>
 #include <Geom_Surface.hxx>
 #include <BRepTools.hxx>
@@ -434,21 +432,7 @@ std::vector<PatchPiece> patch_pieces(const OrbitPatch& patch, const std::vector<
 }
 
 TopoDS_Face on_own_sheet(const TopoDS_Face& piece, const Handle(Geom_Surface)& sheet) {
-  const TopoDS_Face copy = TopoDS::Face(BRepBuilderAPI_Copy(piece).Shape());
-  TopLoc_Location loc;
-  BRep_Tool::Surface(copy, loc);
-  BRep_Builder bb;
-  // (the sheet has the surface's parameters: every pcurve holds on it as it is)
-  for (TopExp_Explorer ex(copy, TopAbs_EDGE); ex.More(); ex.Next()) {
-    const TopoDS_Edge& e = TopoDS::Edge(ex.Current());
-    double f, l;
-    const Handle(Geom2d_Curve) pc = BRep_Tool::CurveOnSurface(e, copy, f, l);
-    if (pc.IsNull()) return piece;
-    bb.UpdateEdge(e, pc, sheet, loc, BRep_Tool::Tolerance(e));
-    bb.Range(e, sheet, loc, f, l);
-  }
-  bb.UpdateFace(copy, sheet, loc, BRep_Tool::Tolerance(copy));
-  return copy;
+  return face_on_surface(piece, sheet);
 }
 
 std::optional<std::vector<TopoDS_Edge>> orbit_section(const OrbitPatch& patch_a, const OrbitPatch& patch_b,

@@ -1,8 +1,6 @@
 // The checks of a solid that use its own boundary (see solid_checks.hpp).
 #include <BRepAdaptor_Surface.hxx>
-#include <BRepBuilderAPI_Copy.hxx>
 #include <BRepTools.hxx>
-#include <BRep_Builder.hxx>
 #include <GeomConvert.hxx>
 #include <Geom_BSplineSurface.hxx>
 #include <Geom_RectangularTrimmedSurface.hxx>
@@ -54,23 +52,7 @@ TopoDS_Face integrable_face(const TopoDS_Face& f) {
         const gp_Pnt p = surface->Value(u, v);
         if (p.Distance(b->Value(u, v)) > 1e-12 * (1 + p.XYZ().Modulus())) return f;
       }
-    TopoDS_Face g = TopoDS::Face(BRepBuilderAPI_Copy(f).Shape());
-    BRep_Builder bb;
-    for (TopExp_Explorer ex(g, TopAbs_EDGE); ex.More(); ex.Next()) {
-      const TopoDS_Edge& e = TopoDS::Edge(ex.Current());
-      double first, last;
-      const Handle(Geom2d_Curve) pc = BRep_Tool::CurveOnSurface(e, g, first, last);
-      if (pc.IsNull()) return f;
-      if (BRep_Tool::IsClosed(e, g)) {
-        const Handle(Geom2d_Curve) pc2 = BRep_Tool::CurveOnSurface(TopoDS::Edge(e.Reversed()), g, first, last);
-        bb.UpdateEdge(e, pc, pc2, b, loc, BRep_Tool::Tolerance(e));
-      } else {
-        bb.UpdateEdge(e, pc, b, loc, BRep_Tool::Tolerance(e));
-      }
-      bb.Range(e, b, loc, first, last);
-    }
-    bb.UpdateFace(g, b, loc, BRep_Tool::Tolerance(g));
-    return g;
+    return face_on_surface(f, b);
   } catch (const Standard_Failure&) {
     return f;
   }
