@@ -24,6 +24,7 @@
 #include <BRepBuilderAPI_Copy.hxx>
 #include <ShapeUpgrade_UnifySameDomain.hxx>
 #include <TopExp.hxx>
+#include <TopTools_MapOfShape.hxx>
 #include <TopExp_Explorer.hxx>
 #include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
 #include <TopTools_IndexedMapOfShape.hxx>
@@ -46,6 +47,7 @@
 
 #include "faces/orbit_section.hpp"
 #include "faces/section_refit.hpp"
+#include "faces/touching_section.hpp"
 #include "base/stop.hpp"
 #include "sweep/error.hpp"
 
@@ -259,7 +261,25 @@ struct Candidate {
   /// Faces of one arrangement of candidates on one surface share a group (>= 0): they meet only
   /// along their edges, so no section between them is needed.
   int group = -1;
+  /// A sweep of a grazing curve: the curve, the joint and the body's surface the curve lies on.
+  std::shared_ptr<const TouchingSweep> touching;
+  /// A piece of the start or the end copy: the body's surface it lies on (without the copy's
+  /// location) and the time of the copy (0 or T; -1 for other candidates).
+  Handle(Geom_Surface) body_surface;
+  double copy_t = -1;
 };
+
+/// When one of two candidates is the sweep of a grazing curve and the other a start or end copy of
+/// the body's surface the curve lies on (which the sweep touches along the curve): the sweep, the
+/// copy face and the end of the range at which they touch.
+std::optional<std::tuple<std::shared_ptr<const TouchingSweep>, TopoDS_Face, double>> touching_pair(const Candidate& a,
+                                                                                                    const Candidate& b) {
+  for (const auto& [sweep, copy] : {std::pair{&a, &b}, std::pair{&b, &a}})
+    if (sweep->touching && copy->copy_t >= 0 && !copy->body_surface.IsNull() &&
+        copy->body_surface == sweep->touching->surface)
+      return std::tuple{sweep->touching, copy->face, copy->copy_t};
+  return std::nullopt;
+}
 
 /// The candidates with each face swept along the joint's orbits whose profile crosses itself (an
 /// extrusion of a curve whose projection along the direction loops: it passes through itself) cut
@@ -272,7 +292,7 @@ std::vector<Candidate> cut_where_through_itself(const std::vector<Candidate>& ca
       if (const auto patch = orbit_patch(c.face, j, eps)) {
         const std::vector<double> at = profile_self_crossings(*patch, j, boundary_tol);
         const std::vector<PatchPiece> pieces = at.empty() ? std::vector<PatchPiece>{} : patch_pieces(*patch, at);
-        for (const PatchPiece& pp : pieces) out.push_back({pp.face, c.variety, c.kind, pp.sheet, c.group});
+        for (const PatchPiece& pp : pieces) out.push_back({pp.face, c.variety, c.kind, pp.sheet, c.group, c.touching, {}, -1});
         if (!pieces.empty()) continue;
       }
     out.push_back(c);
@@ -404,10 +424,12 @@ BoundarySweep boundary_sweep(const TopoDS_Shape& body, const ScrewJoint& j, doub
     if (full_turn) continue;
     const Facing fa = face_facing[k];
     // the start and end copies of faces the motion slides within bound the region they sweep
+    TopLoc_Location loc;
+    const Handle(Geom_Surface) surface = BRep_Tool::Surface(f, loc);
     if (fa == Facing::Back || fa == Facing::Slides || fa == Facing::Unknown)
-      cands.push_back({f, start_id, Candidate::Kind::Start, {}});
+      cands.push_back({f, start_id, Candidate::Kind::Start, {}, -1, nullptr, surface, 0.0});
     if (fa == Facing::Front || fa == Facing::Slides || fa == Facing::Unknown)
-      cands.push_back({TopoDS::Face(moved(f, at_end)), end_id, Candidate::Kind::End, {}});
+      cands.push_back({TopoDS::Face(moved(f, at_end)), end_id, Candidate::Kind::End, {}, -1, nullptr, surface, T});
   }
 
   // 2. The sweeps of the silhouette: edges between a face the motion leaves and one it moves into
@@ -467,7 +489,13 @@ BoundarySweep boundary_sweep(const TopoDS_Shape& body, const ScrewJoint& j, doub
                             std::string(is_grazing ? "grazing curve (n . v = 0)" : "edge") + " " + std::to_string(++edge_no) +
                                 " swept by joint " + std::to_string(joint_no),
                             nlohmann::json::object(), efree);
-    for (const auto& face : sw) cands.push_back({face, vid, Candidate::Kind::Swept, {}});
+    std::shared_ptr<const TouchingSweep> touching;
+    // (the faces of a helical sweep are fitted: a crossing traced on the exact sweep would lie off
+    // them by their fit error, so OCCT intersects those)
+    const bool exact_sweep = j.type != JointType::Helical || j.pitch == 0;
+    if (is_grazing && exact_sweep && settings.touching_sections)
+      touching = std::make_shared<const TouchingSweep>(TouchingSweep{c, f, l, j, T, BRep_Tool::Surface(TopoDS::Face(fl.First()), l1)});
+    for (const auto& face : sw) cands.push_back({face, vid, Candidate::Kind::Swept, {}, -1, touching, {}, -1});
   }
   out.seconds["candidates"] = since(t0);
 
@@ -508,10 +536,33 @@ BoundarySweep boundary_sweep(const TopoDS_Shape& body, const ScrewJoint& j, doub
       }
       TopTools_IndexedMapOfShape faces;
       TopExp::MapShapes(gf.Shape(), TopAbs_FACE, faces);
-      // (the arrangement's faces may cross the start or the end copy: they are swept regions now)
+      // Each face of the arrangement keeps what the candidate it comes from lies on (a face of the
+      // start or the end copy, a sweep of a grazing curve). The arrangement's faces may cross the
+      // start or the end copy: they are swept regions now, unless the group is of one kind.
+      std::vector<int> origin(faces.Extent() + 1, -1);
+      for (std::size_t i : members) {
+        const TopTools_ListOfShape& images = gf.Modified(cands[i].face);
+        if (images.IsEmpty() && !gf.IsDeleted(cands[i].face) && faces.Contains(cands[i].face) &&
+            origin[faces.FindIndex(cands[i].face)] < 0)
+          origin[faces.FindIndex(cands[i].face)] = int(i);
+        for (TopTools_ListIteratorOfListOfShape it(images); it.More(); it.Next())
+          if (faces.Contains(it.Value()) && origin[faces.FindIndex(it.Value())] < 0)
+            origin[faces.FindIndex(it.Value())] = int(i);
+      }
       const Candidate& first = cands[members[0]];
-      for (int k = 1; k <= faces.Extent(); ++k)
-        merged.push_back({TopoDS::Face(faces(k)), first.variety, Candidate::Kind::Swept, {}, r});
+      bool one_kind = true;
+      for (std::size_t i : members) one_kind = one_kind && cands[i].kind == first.kind;
+      for (int k = 1; k <= faces.Extent(); ++k) {
+        Candidate c{TopoDS::Face(faces(k)), first.variety, one_kind ? first.kind : Candidate::Kind::Swept, {}, r,
+                    nullptr, {}, -1};
+        if (origin[k] >= 0) {
+          const Candidate& o = cands[origin[k]];
+          c.touching = o.touching;
+          c.body_surface = o.body_surface;
+          c.copy_t = o.copy_t;
+        }
+        merged.push_back(c);
+      }
     }
     cands.swap(merged);
   }
@@ -545,10 +596,39 @@ BoundarySweep boundary_sweep(const TopoDS_Shape& body, const ScrewJoint& j, doub
   std::vector<std::optional<OrbitPatch>> carried(n);
   if (settings.orbit_sections)
     for (std::size_t i = 0; i < n; ++i) carried[i] = orbit_patch(cands[i].face, j, eps, boundary_tol);
+  // A sweep of a grazing curve and a copy of the surface it touches cross where their distance,
+  // divided by the square of the time from the touching copy, vanishes: traced once per sweep and
+  // copy face, whichever of the sweep's faces meets it.
+  std::vector<int> touch_job(pairs.size(), -1);
+  std::vector<std::tuple<std::shared_ptr<const TouchingSweep>, TopoDS_Face, double>> touch_jobs;
+  {
+    std::map<std::pair<const TouchingSweep*, const TopoDS_TShape*>, int> job_of;
+    for (std::size_t k = 0; k < pairs.size(); ++k)
+      if (const auto tp = touching_pair(cands[pairs[k].first], cands[pairs[k].second])) {
+        const auto key = std::pair{std::get<0>(*tp).get(), std::get<1>(*tp).TShape().get()};
+        const auto [it, fresh] = job_of.emplace(key, int(touch_jobs.size()));
+        if (fresh) touch_jobs.push_back(*tp);
+        touch_job[k] = it->second;
+      }
+  }
+  std::vector<std::optional<std::vector<TopoDS_Edge>>> touch_edges(touch_jobs.size());
+  std::vector<double> touch_error(touch_jobs.size(), 0.0);
+  parallel_for(touch_jobs.size(), [&]() -> std::function<void(std::size_t)> {
+    return [&](std::size_t m) {
+      const auto& [sweep, copy, t_touch] = touch_jobs[m];
+      touch_edges[m] = touching_section(*sweep, t_touch, copy, fit_tol, size, &touch_error[m]);
+    };
+  });
   parallel_for(pairs.size(), [&]() -> std::function<void(std::size_t)> {
     return [&](std::size_t k) {
       const TopoDS_Face& fa = cands[pairs[k].first].face;
       const TopoDS_Face& fb = cands[pairs[k].second].face;
+      if (touch_job[k] >= 0 && touch_edges[touch_job[k]]) {
+        pair_edges[k] = *touch_edges[touch_job[k]];
+        pair_sides[k].assign(pair_edges[k].size(), 3);
+        pair_refit_error[k] = touch_error[touch_job[k]];
+        return;
+      }
       if (carried[pairs[k].first] && carried[pairs[k].second]) {
         if (auto arcs = orbit_section(*carried[pairs[k].first], *carried[pairs[k].second], j, boundary_tol,
                                       &pair_refit_error[k])) {
@@ -609,7 +689,9 @@ BoundarySweep boundary_sweep(const TopoDS_Shape& body, const ScrewJoint& j, doub
         return;
       }
       TopTools_ListOfShape tl;
-      for (const auto& e : tools[i]) tl.Append(e);
+      TopTools_MapOfShape once;  // an edge shared by several pairs splits the face once
+      for (const auto& e : tools[i])
+        if (once.Add(e)) tl.Append(e);
       const TopoDS_Shape split = split_by_edges(cands[i].face, tl, eps, SplitMode::NonDestructive);
       if (split.IsNull()) {
         split_failed[i] = 1;

@@ -41,15 +41,25 @@ TopoDS_Shape entity_stage(const StageInput& in, const EntitySpec& entity, const 
   const PointTestMaker stage_member = orbit_entity
                                           ? orbit_membership(orbit_placed(orbit_entity, j.transform(j.lo) * G), j, T)
                                           : trajectory_membership(in.body, j, T, 1e-9 * in.size);
-  BoundarySweep b =
-      boundary_sweep(in.body, j, T, stage_member, in.size, in.tol, opt.settings, in.stage, in.joint_no);
-  for (auto it = b.seconds.begin(); it != b.seconds.end(); ++it)
-    rep.seconds[it.key()] = rep.seconds.value(it.key(), 0.0) + it.value().get<double>();
-  // a boundary that left a piece out (a sliver whose crossing with an end copy no section found)
-  // does not close: the arrangement of cells is made instead
-  if (!b.solid.IsNull() && !closed_solids(b.solid) && !closed_solids(healed(b.solid))) {
-    b.failure = "the pieces of its sweep boundary do not close";
-    b.solid.Nullify();
+  // A boundary that left a piece out (a sliver whose crossing with an end copy no section found)
+  // does not close. Crossings traced where sweeps touch the copies are then left to OCCT's general
+  // section; when that does not close either, the arrangement of cells is made instead.
+  auto boundary = [&](const Settings& settings) {
+    BoundarySweep b = boundary_sweep(in.body, j, T, stage_member, in.size, in.tol, settings, in.stage, in.joint_no);
+    for (auto it = b.seconds.begin(); it != b.seconds.end(); ++it)
+      rep.seconds[it.key()] = rep.seconds.value(it.key(), 0.0) + it.value().get<double>();
+    if (!b.solid.IsNull() && !closed_solids(b.solid) && !closed_solids(healed(b.solid))) {
+      b.failure = "the pieces of its sweep boundary do not close";
+      b.solid.Nullify();
+    }
+    return b;
+  };
+  BoundarySweep b = boundary(opt.settings);
+  if (b.solid.IsNull() && opt.settings.touching_sections) {
+    Settings general = opt.settings;
+    general.touching_sections = false;
+    step("stage " + std::to_string(in.stage) + ": " + b.failure + "; again with OCCT's sections where sweeps touch");
+    b = boundary(general);
   }
   if (b.solid.IsNull()) {
     step("stage " + std::to_string(in.stage) + ": " + b.failure + "; built from cells instead");

@@ -27,6 +27,10 @@ struct Settings {
   /// segments where their profiles cross: found so in the plane across the orbits (off: OCCT's
   /// general section of every pair).
   bool orbit_sections = true;
+  /// The sweep of a grazing curve touches the copies of the face the curve lies on along the
+  /// curve: their crossings are traced where the distance divided by the square of the time from
+  /// the touching copy vanishes (off: OCCT's general section, which stalls or strays there).
+  bool touching_sections = true;
 
   // --- building a stage from the arrangement of its candidate faces
   /// A stage whose arrangement of the candidates left after pruning fails its checks is built

@@ -1,0 +1,229 @@
+// Crossings of the sweep of a grazing curve with the face it lies on (touching_section.hpp):
+// h(s, t) = (d(E(s, t)) - d(E(s, t*))) / (t - t*)^2 traced on a grid over the sweep's parameters,
+// its chains cut to the copy face and fitted.
+#include "faces/touching_section.hpp"
+
+#include <BRepAdaptor_Surface.hxx>
+#include <BRepBuilderAPI_MakeEdge.hxx>
+#include <BRepTools.hxx>
+#include <BRepTopAdaptor_FClass2d.hxx>
+#include <BRep_Tool.hxx>
+#include <GeomAPI_PointsToBSpline.hxx>
+#include <GeomAPI_ProjectPointOnCurve.hxx>
+#include <Geom_BSplineCurve.hxx>
+#include <ShapeAnalysis_Surface.hxx>
+#include <TColgp_Array1OfPnt.hxx>
+#include <gp_Cone.hxx>
+#include <gp_Cylinder.hxx>
+#include <gp_Pln.hxx>
+#include <gp_Sphere.hxx>
+#include <gp_Torus.hxx>
+#include <cmath>
+#include <functional>
+#include <memory>
+
+#include "base/internal.hpp"
+#include "sweep/contour.hpp"
+
+namespace sweep::occt {
+namespace {
+
+using UV = Eigen::Vector2d;
+
+/// A signed distance from the surface of a face: exact for planes, cylinders, spheres and tori,
+/// within the meridian plane for cones, along the normal at the nearest point otherwise (that
+/// point may jump between sheets: roots there are not on the surface, and the caller drops them).
+std::function<double(const gp_Pnt&)> distance_function(const TopoDS_Face& face) {
+  const BRepAdaptor_Surface S(face);
+  auto local = [](const gp_Ax3& ax, const gp_Pnt& x) {
+    const gp_Vec d(ax.Location(), x);
+    return gp_XYZ(d.Dot(ax.XDirection()), d.Dot(ax.YDirection()), d.Dot(ax.Direction()));
+  };
+  switch (S.GetType()) {
+    case GeomAbs_Plane: {
+      const gp_Ax3 ax = S.Plane().Position();
+      return [ax, local](const gp_Pnt& x) { return local(ax, x).Z(); };
+    }
+    case GeomAbs_Cylinder: {
+      const gp_Cylinder c = S.Cylinder();
+      return [c, local](const gp_Pnt& x) {
+        const gp_XYZ p = local(c.Position(), x);
+        return std::hypot(p.X(), p.Y()) - c.Radius();
+      };
+    }
+    case GeomAbs_Cone: {
+      const gp_Cone c = S.Cone();
+      return [c, local](const gp_Pnt& x) {
+        const gp_XYZ p = local(c.Position(), x);
+        const double a = c.SemiAngle();
+        return (std::hypot(p.X(), p.Y()) - c.RefRadius() - p.Z() * std::tan(a)) * std::cos(a);
+      };
+    }
+    case GeomAbs_Sphere: {
+      const gp_Sphere s = S.Sphere();
+      return [s](const gp_Pnt& x) { return x.Distance(s.Location()) - s.Radius(); };
+    }
+    case GeomAbs_Torus: {
+      const gp_Torus t = S.Torus();
+      return [t, local](const gp_Pnt& x) {
+        const gp_XYZ p = local(t.Position(), x);
+        return std::hypot(std::hypot(p.X(), p.Y()) - t.MajorRadius(), p.Z()) - t.MinorRadius();
+      };
+    }
+    default: {
+      const auto projector = std::make_shared<ShapeAnalysis_Surface>(BRep_Tool::Surface(face));
+      return [projector](const gp_Pnt& x) {
+        const gp_Pnt2d uv = projector->ValueOfUV(x, 1e-12);
+        gp_Pnt p;
+        gp_Vec du, dv;
+        projector->Surface()->D1(uv.X(), uv.Y(), p, du, dv);
+        const gp_Vec n = du.Crossed(dv);
+        const double m = n.Magnitude();
+        return m > 1e-300 ? gp_Vec(p, x).Dot(n) / m : x.Distance(p);
+      };
+    }
+  }
+}
+
+/// Whether point x (on the face's surface) lies in the face: its parameters, brought into the
+/// face's parameter box over periods, classified against the face's boundary.
+class FaceMembership {
+ public:
+  explicit FaceMembership(const TopoDS_Face& f)
+      : surf_(BRep_Tool::Surface(f)), projector_(surf_) {
+    BRepTools::UVBounds(f, u0_, u1_, v0_, v1_);
+    cls_ = std::make_unique<BRepTopAdaptor_FClass2d>(f, 1e-9 * std::max(u1_ - u0_, v1_ - v0_));
+  }
+  bool contains(const gp_Pnt& x) {
+    gp_Pnt2d uv = projector_.ValueOfUV(x, 1e-12);
+    double u = uv.X(), v = uv.Y();
+    if (surf_->IsUPeriodic()) u = wrap(u, u0_, u1_, surf_->UPeriod());
+    if (surf_->IsVPeriodic()) v = wrap(v, v0_, v1_, surf_->VPeriod());
+    return cls_->Perform(gp_Pnt2d(u, v)) != TopAbs_OUT;
+  }
+
+ private:
+  static double wrap(double u, double lo, double hi, double period) {
+    const double mid = 0.5 * (lo + hi);
+    return u + period * std::round((mid - u) / period);
+  }
+  Handle(Geom_Surface) surf_;
+  ShapeAnalysis_Surface projector_;
+  std::unique_ptr<BRepTopAdaptor_FClass2d> cls_;
+  double u0_ = 0, u1_ = 0, v0_ = 0, v1_ = 0;
+};
+
+/// A root of h near p, on the line through p across the chord direction d (p when h does not
+/// change sign within the chord's length of it).
+UV root_across(const ContourFunction& h, const UV& p, const UV& d) {
+  const UV n = UV(-d.y(), d.x());
+  const double hp = h(p);
+  if (hp == 0) return p;
+  for (double s : {0.05, 0.2, 0.5}) {
+    const UV a = p - s * n, b = p + s * n;
+    const double ha = h(a), hb = h(b);
+    if ((ha > 0) != (hb > 0)) return root_on_segment(h, a, b, ha, hb);
+  }
+  return p;
+}
+
+/// A B-spline through the points of a run, checked at the roots between them: within `tol` or
+/// nothing (*err: the largest distance measured).
+Handle(Geom_BSplineCurve) fitted_run(const std::vector<gp_Pnt>& on, const std::vector<gp_Pnt>& between, double tol,
+                                     double* err) {
+  TColgp_Array1OfPnt pts(1, int(on.size()));
+  for (std::size_t k = 0; k < on.size(); ++k) pts.SetValue(int(k) + 1, on[k]);
+  GeomAPI_PointsToBSpline fit(pts, 2, 8, GeomAbs_C2, 0.1 * tol);
+  if (!fit.IsDone()) return nullptr;
+  const Handle(Geom_BSplineCurve) c = fit.Curve();
+  double worst = 0;
+  for (const gp_Pnt& p : between) {
+    GeomAPI_ProjectPointOnCurve proj(p, c);
+    if (proj.NbPoints() == 0) return nullptr;
+    worst = std::max(worst, proj.LowerDistance());
+  }
+  *err = worst;
+  return worst <= tol ? c : nullptr;
+}
+
+}  // namespace
+
+std::optional<std::vector<TopoDS_Edge>> touching_section(const TouchingSweep& sw, double t_touch,
+                                                         const TopoDS_Face& copy, double tol, double size,
+                                                         double* fit_err) {
+  if (sw.T <= 0) return std::nullopt;
+  const auto dist = distance_function(copy);
+  auto at = [&](double s, double t) { return to_pnt(sw.joint.transform(t) * to_eigen(sw.curve->Value(s))); };
+  auto d = [&](double s, double t) { return dist(at(s, t)); };
+  // h = (d(s, t) - d(s, t*)) / (t - t*)^2; within tau of t* it is interpolated between its limit
+  // at t* (extrapolated from tau and 2 tau) and its value at tau, where rounding would dominate.
+  const double tau = 1e-3 * sw.T, side = t_touch > 0.5 * sw.T ? -1.0 : 1.0;
+  auto h_raw = [&](double s, double dt) { return (d(s, t_touch + side * dt) - d(s, t_touch)) / (dt * dt); };
+  const ContourFunction h = [&](const UV& p) {
+    const double dt = std::abs(p.y() - t_touch);
+    if (dt >= tau) return h_raw(p.x(), dt);
+    const double h1 = h_raw(p.x(), tau), h0 = 2 * h1 - h_raw(p.x(), 2 * tau);
+    return h0 + (h1 - h0) * dt / tau;
+  };
+  const auto chains = contour_chains(h, sw.first, sw.last, 0, sw.T, 60, 60, 1e-12 * size);
+  FaceMembership member(copy);
+  const double stray = 1e-6 * size;
+  std::vector<TopoDS_Edge> edges;
+  for (const auto& chain : chains) {
+    const std::vector<UV> dense = densified(h, chain);
+    // runs of points on both the sweep and the copy face
+    std::vector<std::vector<UV>> runs;
+    std::vector<UV> run;
+    auto ends_run = [&]() {
+      if (run.size() >= 2) runs.push_back(run);
+      run.clear();
+    };
+    auto good = [&](const UV& p) {
+      return std::abs(d(p.x(), p.y()) - d(p.x(), t_touch)) <= stray && member.contains(at(p.x(), p.y()));
+    };
+    bool prev_in = false;
+    for (std::size_t k = 0; k < dense.size(); ++k) {
+      const bool in = good(dense[k]);
+      if (in != prev_in && k > 0) {
+        // the crossing of the face's boundary between the two points
+        UV a = dense[k - 1], b = dense[k];
+        for (int it = 0; it < 50; ++it) {
+          const UV m = 0.5 * (a + b);
+          (good(m) == prev_in ? a : b) = m;
+        }
+        const UV edge_pt = root_across(h, prev_in ? a : b, dense[k] - dense[k - 1]);
+        run.push_back(edge_pt);
+        if (prev_in) ends_run();
+      }
+      if (in) run.push_back(dense[k]);
+      prev_in = in;
+    }
+    ends_run();
+    for (const auto& r : runs) {
+      std::vector<gp_Pnt> on;
+      for (const UV& p : r)
+        if (on.empty() || on.back().Distance(at(p.x(), p.y())) > 1e-9 * size) on.push_back(at(p.x(), p.y()));
+      if (on.size() < 2) continue;
+      // (a run within 1e-4 of the size is a point where the curve meets the joint's axis: its orbit
+      // is that point, on the copy at every t)
+      double reach = 0;
+      for (const gp_Pnt& p : on) reach = std::max(reach, p.Distance(on.front()));
+      if (reach < 1e-4 * size) continue;
+      std::vector<gp_Pnt> between;
+      for (std::size_t k = 0; k + 1 < r.size(); ++k) {
+        const UV m = root_across(h, 0.5 * (r[k] + r[k + 1]), r[k + 1] - r[k]);
+        between.push_back(at(m.x(), m.y()));
+      }
+      double err = 0;
+      const Handle(Geom_BSplineCurve) c = fitted_run(on, between, tol, &err);
+      if (c.IsNull()) return std::nullopt;
+      *fit_err = std::max(*fit_err, err);
+      BRepBuilderAPI_MakeEdge mk(c);
+      if (!mk.IsDone()) return std::nullopt;
+      edges.push_back(mk.Edge());
+    }
+  }
+  return edges;
+}
+
+}  // namespace sweep::occt
