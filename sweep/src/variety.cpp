@@ -1,9 +1,9 @@
 #include "sweep/variety.hpp"
 
+#include "sweep/contour.hpp"
+
 #include <algorithm>
-#include <array>
 #include <cmath>
-#include <map>
 
 namespace sweep {
 
@@ -68,27 +68,6 @@ class GrazingField {
     if (vanishing_[2]) s.y() = std::min(s.y(), face_.hi(1) - in * span_[1]);
     return grazing_value(face_, pose_, s.x(), s.y());
   }
-  /// The root of g on the segment from a to b, where g(a) = ga and g(b) = gb have opposite signs
-  /// (Illinois regula falsi).
-  Vector2d root(Vector2d a, Vector2d b, double ga, double gb) const {
-    Vector2d x = a;
-    for (int it = 0; it < 100; ++it) {
-      const double f = ga / (ga - gb);
-      x = a + f * (b - a);
-      const double gx = at(x);
-      if (gx == 0 || (b - a).norm() < 1e-15 * (span_[0] + span_[1])) break;
-      if ((gx < 0) == (ga < 0)) {
-        a = x;
-        ga = gx;
-        gb *= 0.5;
-      } else {
-        b = x;
-        gb = gx;
-        ga *= 0.5;
-      }
-    }
-    return x;
-  }
   bool vanishing_[4] = {false, false, false, false};
 
  private:
@@ -122,83 +101,16 @@ GrazingSet grazing_set(const Patch& face, const StageMotion& motion, double t, i
   GrazingSet out;
   const PoseJet pose = motion.pose(t);
   GrazingField field(face, pose);
-  auto grid_point = [&](int i, int j) {
-    return Vector2d(face.lo(0) + (face.hi(0) - face.lo(0)) * i / n, face.lo(1) + (face.hi(1) - face.lo(1)) * j / n);
-  };
-  std::vector<double> g((n + 1) * (n + 1));
   double scale = 0;
   for (int i = 0; i <= n; ++i)
-    for (int j = 0; j <= n; ++j) {
-      const Vector2d s = grid_point(i, j);
-      g[j * (n + 1) + i] = grazing_value(face, pose, s.x(), s.y());
-      scale = std::max(scale, std::abs(g[j * (n + 1) + i]));
-    }
+    for (int j = 0; j <= n; ++j)
+      scale = std::max(scale, std::abs(grazing_value(face, pose, face.lo(0) + (face.hi(0) - face.lo(0)) * i / n,
+                                                     face.lo(1) + (face.hi(1) - face.lo(1)) * j / n)));
   if (!(scale > 0)) return out;  // the face does not move, or grazes everywhere
   find_vanishing_sides(face, pose, n, scale, out, field);
-  // on a side where g vanishes, its grid values are read just inside instead
-  for (int i = 0; i <= n; ++i)
-    for (int j = 0; j <= n; ++j)
-      if ((field.vanishing_[3] && i == 0) || (field.vanishing_[1] && i == n) || (field.vanishing_[0] && j == 0) ||
-          (field.vanishing_[2] && j == n))
-        g[j * (n + 1) + i] = field.at(grid_point(i, j));
-  auto value = [&](int i, int j) { return g[j * (n + 1) + i]; };
-  // crossings on grid edges: horizontal edge (i, j)-(i+1, j) has id j n + i, vertical edge
-  // (i, j)-(i, j+1) has id H + i n + j
-  const int H = n * (n + 1);
-  std::map<int, Vector2d> crossing;
-  auto edge_crossing = [&](int id, int i0, int j0, int i1, int j1) {
-    const double a = value(i0, j0), b = value(i1, j1);
-    if ((a < 0) == (b < 0)) return false;
-    if (!crossing.count(id)) crossing[id] = field.root(grid_point(i0, j0), grid_point(i1, j1), a, b);
-    return true;
-  };
-  std::map<int, std::vector<int>> links;
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) {
-      const std::array<int, 4> ids = {j * n + i, H + (i + 1) * n + j, (j + 1) * n + i, H + i * n + j};
-      std::vector<int> hit;
-      if (edge_crossing(ids[0], i, j, i + 1, j)) hit.push_back(ids[0]);
-      if (edge_crossing(ids[1], i + 1, j, i + 1, j + 1)) hit.push_back(ids[1]);
-      if (edge_crossing(ids[2], i, j + 1, i + 1, j + 1)) hit.push_back(ids[2]);
-      if (edge_crossing(ids[3], i, j, i, j + 1)) hit.push_back(ids[3]);
-      if (hit.size() == 4) {
-        // a saddle: the centre's sign tells which corners are joined across the cell
-        const bool centre_like_first = (field.at(0.5 * (grid_point(i, j) + grid_point(i + 1, j + 1))) < 0) ==
-                                       (value(i, j) < 0);
-        if (centre_like_first) hit = {ids[0], ids[1], ids[2], ids[3]};
-        else hit = {ids[0], ids[3], ids[2], ids[1]};
-      }
-      for (std::size_t k = 0; k + 1 < hit.size(); k += 2) {
-        links[hit[k]].push_back(hit[k + 1]);
-        links[hit[k + 1]].push_back(hit[k]);
-      }
-    }
-  // chains: open ones from their ends first, then the closed ones
-  std::map<int, bool> used;
-  auto walk = [&](int start) {
-    std::vector<Vector2d> line{crossing[start]};
-    used[start] = true;
-    int prev = -1, at = start;
-    while (true) {
-      int next = -1;
-      for (int m : links[at])
-        if (m != prev && !used[m]) next = m;
-      if (next < 0) {
-        for (int m : links[at])
-          if (m == start && m != prev && line.size() > 2) line.push_back(crossing[start]);
-        break;
-      }
-      used[next] = true;
-      line.push_back(crossing[next]);
-      prev = at;
-      at = next;
-    }
-    out.curves.push_back(std::move(line));
-  };
-  for (const auto& [id, next] : links)
-    if (next.size() == 1 && !used[id]) walk(id);
-  for (const auto& [id, next] : links)
-    if (!used[id]) walk(id);
+  // the zero set, traced on the same grid with the values read just inside vanishing sides
+  out.curves = contour_chains([&field](const Vector2d& s) { return field.at(s); }, face.lo(0), face.hi(0), face.lo(1),
+                              face.hi(1), n, n, 0.0);
   return out;
 }
 
