@@ -273,7 +273,7 @@ std::optional<TopoDS_Edge> helix_section(const Carried& a, const Carried& b, con
     const auto [x, t] = ax.on_helix(m, q);
     const auto p = point_on_both(a.surface, b.surface, to_pnt(x), to_vec(t.normalized()), patch_uv(a, ax, ba, q),
                                  patch_uv(b, ax, bb, q), tol);
-    if (!p || to_eigen(*p).cwiseAbs().maxCoeff() > 1e300 || (to_eigen(*p) - x).norm() > stray) return std::nullopt;
+    if (!p || !to_eigen(*p).allFinite() || (to_eigen(*p) - x).norm() > stray) return std::nullopt;
     return p;
   };
   const int quarter_turns = std::max(1, int(std::ceil(len / (0.5 * M_PI))));
