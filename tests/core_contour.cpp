@@ -23,7 +23,7 @@ TEST_CASE("A circle's implicit function gives one closed chain of exact roots", 
   CHECK(std::abs(std::abs(turned) - 2 * M_PI) < 1e-9);  // once around
 }
 
-TEST_CASE("Two crossing branches meet at the saddle inside a cell; open branches end on the sides", "[contour]") {
+TEST_CASE("Two crossing branches meet at the saddle inside a cell, open branches end on the sides", "[contour]") {
   const Vector2d c(0.013, -0.021);  // inside a cell, not on a grid line
   const sweep::ContourFunction f = [&](const Vector2d& p) { return (p.x() - c.x()) * (p.y() - c.y()); };
   const auto chains = sweep::contour_chains(f, -1, 1, -1, 1, 20, 20, 1e-12);

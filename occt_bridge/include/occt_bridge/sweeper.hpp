@@ -86,6 +86,11 @@ struct Report {
   /// stages whose solid failed OCCT's validity check and passed every check after OCCT's shape
   /// healing (ShapeFix_Shape)
   std::vector<int> healed_stages;
+  /// stages built from the arrangement of cells (a one-joint sweep whose boundary did not close)
+  std::vector<int> cell_stages;
+  /// the swept set's volume integrated over the orbits without the solid, and its error estimate
+  bool has_independent_volume = false;
+  double volume_independent = 0, volume_independent_error = 0;
   /// (stage, faces): candidate faces that pruning had dropped, restored because the boundary
   /// pieces of the arrangement without them left free edges on them
   std::vector<std::pair<int, int>> restored_candidates;

@@ -246,6 +246,7 @@ ChainSweep sweep_chain(const ChainEntity& entity, const Motion& motion, bool jud
                           entity.size, entity.tol, entity.fit_tol, n - i, i + 1};
       shape = cells_stage(in, entity, use_pe ? stage_pe : nullptr, judged && i == 0, opt, fit_err, rep, stage_cands,
                           &out.redo_last, step);
+      if (dim == 3) rep.cell_stages.push_back(n - i);
     }
     if (dim >= 2) {
       // a solid stage, from either engine: its candidates go to the report

@@ -70,6 +70,10 @@ TopoDS_Shape finish_curve_or_surface(const TopoDS_Shape& shape, int dim, double 
 struct IndependentMembership {
   MemberTestMaker test;
   std::string name;
+  /// The swept set's volume computed without the solid (the orbit-space integral of a primitive
+  /// under one joint) to relative accuracy `rel_tol`, with an estimate of its error; empty when
+  /// there is none.
+  std::function<double(double rel_tol, double* error)> volume;
 };
 /// The entity's orbit intervals for a primitive under one joint, the trajectory's intersections
 /// with the entity's own faces for other solids under one joint, the certified search over the
@@ -101,6 +105,8 @@ class FinalChecks {
  private:
   std::string verdict(const TopoDS_Shape& solid);
   Report& rep_;
+  /// The volume against the independent volume, for solids built from cells (empty when it agrees).
+  std::string independent_volume_check();
   IndependentMembership independent_;
   Eigen::AlignedBox3d true_box_;
   double tol_, size_;

@@ -88,7 +88,7 @@ IndependentMembership union_of(const std::vector<IndependentMembership>& parts) 
               return result;
             };
           },
-          "union over the segments of: " + parts.front().name};
+          "union over the segments of: " + parts.front().name, {}};
 }
 
 /// Membership in the sweep of a solid with a signed distance under `m`, by a search over t that
@@ -103,7 +103,7 @@ IndependentMembership search_over_t(const std::shared_ptr<const SignedDistance>&
             auto set = std::make_shared<StageSweptSet>(*sd, *motion, resolution, budget);
             return [set](const Eigen::Vector3d& x) { return (*set)(x); };
           },
-          std::string("search over t (signed distance, ") + (certified ? "certified" : "sampled") + " speed bound)"};
+          std::string("search over t (signed distance, ") + (certified ? "certified" : "sampled") + " speed bound)", {}};
 }
 
 /// The checks of a solid result, the Monte Carlo volume of --verify by `member`, the verdict.

@@ -33,6 +33,10 @@ nlohmann::json Report::to_json() const {
   j["status"] = status;
   j["message"] = message;
   j["volume"] = {{"brep", volume_brep}, {"divergence", volume_divergence}};
+  if (has_independent_volume) {
+    j["volume"]["orbits"] = volume_independent;
+    j["volume"]["orbits_error"] = volume_independent_error;
+  }
   if (has_mc) {
     j["volume"]["monte_carlo"] = volume_mc;
     j["volume"]["monte_carlo_stderr"] = volume_mc_stderr;

@@ -23,14 +23,15 @@ IndependentMembership independent_membership(const EntitySpec& entity, const Mot
   const std::size_t budget = settings.membership_budget;
   if (n == 1 && orbit_entity) {
     const ScrewJoint j = clipped.joints[0];
-    return {always_decided(orbit_membership(orbit_placed(orbit_entity, j.transform(j.lo) * clipped.home), j, j.hi - j.lo)),
-            "orbit intervals of the entity"};
+    const OrbitSolidPtr start = orbit_placed(orbit_entity, j.transform(j.lo) * clipped.home);
+    return {always_decided(orbit_membership(start, j, j.hi - j.lo)), "orbit intervals of the entity",
+            [start, j](double rel_tol, double* error) { return joint_sweep_volume(*start, j, j.hi - j.lo, rel_tol, error); }};
   }
   if (n == 1 && entity.dimension() == 3 && !sd) {
     const ScrewJoint j = clipped.joints[0];
     const TopoDS_Shape body = moved(moved(raw, clipped.home), j.transform(j.lo));
     return {always_decided(trajectory_membership(body, j, j.hi - j.lo, 1e-9 * size)),
-            "trajectories against the entity's faces"};
+            "trajectories against the entity's faces", {}};
   }
   if (sd) {
     return {[sd, clipped, size, budget]() -> MemberTest {
@@ -38,7 +39,7 @@ IndependentMembership independent_membership(const EntitySpec& entity, const Mot
                 return swept_set_membership(*sd, clipped, x, 1e-9 * size, budget);
               };
             },
-            "certified search over the joint box (signed distance)"};
+            "certified search over the joint box (signed distance)", {}};
   }
   if (pe) {
     // The second-order exclusion decides the probes of points and curves in far fewer boxes
@@ -51,7 +52,7 @@ IndependentMembership independent_membership(const EntitySpec& entity, const Mot
               };
             },
             std::string("certified search over the joint and entity parameters") +
-                (second_order ? " (second-order exclusion)" : "")};
+                (second_order ? " (second-order exclusion)" : ""), {}};
   }
   return {};
 }
@@ -176,6 +177,30 @@ std::string FinalChecks::verdict(const TopoDS_Shape& solid) {
     return "the solid disagrees with the independent membership test at " +
            std::to_string(v.mismatches + v.probe_mismatches) + " of " + std::to_string(v.samples + 2 * v.probes) +
            " points; " + v.first_mismatch;
+  return independent_volume_check();
+}
+
+std::string FinalChecks::independent_volume_check() {
+  // Sampling bounds the volume of a wrong region only coarsely (to the box's volume times the share
+  // of samples near the boundary). A stage built from the arrangement of cells (after its sweep
+  // boundary did not close) is held to the independent volume as well: a solid whose faces all lie
+  // within the tolerance of the true boundary has a volume within the tolerance times its area.
+  Report& rep = rep_;
+  if (!independent_.volume || rep.cell_stages.empty() || settings_.independent_volume_rel_tol <= 0) return "";
+  const auto t_vol = Clock::now();
+  double error = 0;
+  const double v = independent_.volume(settings_.independent_volume_rel_tol, &error);
+  rep.seconds["independent_volume"] = rep.seconds.value("independent_volume", 0.0) + since(t_vol);
+  rep.has_independent_volume = true;
+  rep.volume_independent = v;
+  rep.volume_independent_error = error;
+  const double band = 3 * error + tol_ * rep.area + settings_.volume_relative_band * size_ * size_ * size_;
+  if (std::abs(rep.volume_brep - v) > band) {
+    rebuild_may_help_ = false;
+    return "the solid's volume (" + std::to_string(rep.volume_brep) +
+           ") disagrees with the volume integrated over the orbits without it (" + std::to_string(v) + " +- " +
+           std::to_string(error) + ") by more than the tolerance times the area";
+  }
   return "";
 }
 

@@ -18,6 +18,10 @@ struct Settings {
   /// B-rep and divergence volumes may differ by this relative amount (the two integrations'
   /// rounding), plus tol times the model's surface scale (size^2).
   double volume_relative_band = 1e-9;
+  /// A one-joint sweep of a primitive whose solid came from the arrangement of cells is checked
+  /// against the volume integrated over the joint's orbits (sweep/orbit.hpp), to this relative
+  /// accuracy (0: not checked).
+  double independent_volume_rel_tol = 1e-5;
 
   // --- building a stage's solid from its sweep boundary
   /// How far off a piece of the candidate boundary its two sides are tested (x size), and again at
