@@ -86,7 +86,8 @@ struct Report {
   /// stages whose solid failed OCCT's validity check and passed every check after OCCT's shape
   /// healing (ShapeFix_Shape)
   std::vector<int> healed_stages;
-  /// stages built from the arrangement of cells (a one-joint sweep whose boundary did not close)
+  /// solid stages built from the arrangement of cells (every stage of a chain after the first; the
+  /// first when its sweep boundary did not close)
   std::vector<int> cell_stages;
   /// the swept set's volume integrated over the orbits without the solid, and its error estimate
   bool has_independent_volume = false;

@@ -540,14 +540,13 @@ BoundarySweep boundary_sweep(const TopoDS_Shape& body, const ScrewJoint& j, doub
       // start or the end copy, a sweep of a grazing curve). The arrangement's faces may cross the
       // start or the end copy: they are swept regions now, unless the group is of one kind.
       std::vector<int> origin(faces.Extent() + 1, -1);
+      auto claim = [&](const TopoDS_Shape& face, std::size_t i) {
+        if (faces.Contains(face) && origin[faces.FindIndex(face)] < 0) origin[faces.FindIndex(face)] = int(i);
+      };
       for (std::size_t i : members) {
         const TopTools_ListOfShape& images = gf.Modified(cands[i].face);
-        if (images.IsEmpty() && !gf.IsDeleted(cands[i].face) && faces.Contains(cands[i].face) &&
-            origin[faces.FindIndex(cands[i].face)] < 0)
-          origin[faces.FindIndex(cands[i].face)] = int(i);
-        for (TopTools_ListIteratorOfListOfShape it(images); it.More(); it.Next())
-          if (faces.Contains(it.Value()) && origin[faces.FindIndex(it.Value())] < 0)
-            origin[faces.FindIndex(it.Value())] = int(i);
+        if (images.IsEmpty()) claim(cands[i].face, i);  // kept as it is (or deleted: then not among the faces)
+        for (TopTools_ListIteratorOfListOfShape it(images); it.More(); it.Next()) claim(it.Value(), i);
       }
       const Candidate& first = cands[members[0]];
       bool one_kind = true;

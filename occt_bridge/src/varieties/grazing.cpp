@@ -28,7 +28,6 @@
 #include <TopoDS.hxx>
 #include <algorithm>
 #include <cmath>
-#include <map>
 
 #include "base/internal.hpp"
 #include "sweep/contour.hpp"
