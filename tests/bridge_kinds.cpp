@@ -323,3 +323,23 @@ TEST_CASE("Kinds: placed balls along random prismatic joints are capsules, built
       if (direct) CHECK(r.report.faces == 3);  // one cylinder, two half balls
     }
 }
+
+TEST_CASE("Kinds: a spec without a tolerance takes Settings::default_tolerance of the model size", "[kinds]") {
+  // a unit box turned a quarter turn about the z axis: model size from its reach
+  const sweep::Spec spec = sweep::parse_spec(
+      R"({"sweep": 1, "entity": {"kind": "box", "min": [0, 0, 0], "max": [1, 1, 1]},
+          "motion": {"kind": "axes", "joints": [{"type": "revolute", "point": [0, 0, 0], "direction": [0, 0, 1],
+                                                  "range": [0, 1.5707963267948966]}]}})",
+      ".");
+  sweep::occt::RunOptions fine, coarse;
+  coarse.settings.default_tolerance = 1e-5;
+  const auto a = sweep::occt::run_sweep(spec, fine).report, b = sweep::occt::run_sweep(spec, coarse).report;
+  INFO(a.to_json().dump() << "\n" << b.to_json().dump());
+  REQUIRE(a.ok());
+  REQUIRE(b.ok());
+  CHECK(a.tol_requested > 0);
+  CHECK(std::abs(b.tol_requested / a.tol_requested - 10) < 1e-12);
+  // the swept square: half of each end copy and the quarter of the disc of radius sqrt(2) between
+  CHECK(std::abs(a.volume_brep - (1 + M_PI / 2)) <= a.area * a.tol_requested);
+  CHECK(std::abs(b.volume_brep - (1 + M_PI / 2)) <= b.area * b.tol_requested);
+}

@@ -189,7 +189,7 @@ TopoDS_Shape split_at_grazing(const TopoDS_Shape& body, const ScrewJoint& j, dou
     }
   }
   if (tools.IsEmpty()) return body;
-  const TopoDS_Shape split = split_by_edges(body, tools, 1e-9 * size, SplitMode::NonDestructive);
+  const TopoDS_Shape split = split_by_edges(body, tools, Settings::resolution * size, SplitMode::NonDestructive);
   if (split.IsNull()) throw ComputeError("the body's faces could not be split at their grazing curves");
   return split;
 }
@@ -503,7 +503,7 @@ BoundarySweep boundary_sweep(const TopoDS_Shape& body, const ScrewJoint& j, doub
   //    revolve into one surface) overlap: each such group is replaced by its arrangement, whose
   //    faces do not overlap.
   const auto t_groups = Clock::now();
-  const double eps = 1e-9 * size;
+  const double eps = Settings::resolution * size;
   {
     const std::size_t n = cands.size();
     std::vector<int> parent(n);
@@ -770,7 +770,7 @@ BoundarySweep boundary_sweep(const TopoDS_Shape& body, const ScrewJoint& j, doub
 
   // 6. The kept pieces, oriented outward, sewn into a solid.
   const auto t_sew = Clock::now();
-  BRepBuilderAPI_Sewing sewing(std::max(1e-7 * size, 10 * out.fit_error));
+  BRepBuilderAPI_Sewing sewing(std::max(Settings::sewing_gap * size, 10 * out.fit_error));
   int kept = 0;
   for (std::size_t i = 0; i < all.size(); ++i) {
     if (keep[i] == 0) continue;

@@ -82,7 +82,7 @@ std::vector<InwardPoint> inward_points(const TopoDS_Face& f, std::initializer_li
 /// classifier finds it inside.
 bool thin_cell_point(const TopoDS_Solid& cell, double size, Eigen::Vector3d* out) {
   IntCurvesFace_ShapeIntersector hits;
-  hits.Load(cell, 1e-9 * size);
+  hits.Load(cell, Settings::resolution * size);
   for (TopExp_Explorer ex(cell, TopAbs_FACE); ex.More(); ex.Next())
     for (const auto& [p, n] :
          inward_points(TopoDS::Face(ex.Current()), {0.5, 0.29, 0.71, 0.13, 0.87}, {0.5, 0.31, 0.69, 0.17, 0.83})) {
@@ -107,7 +107,7 @@ bool interior_point(const TopoDS_Solid& cell, double size, Eigen::Vector3d* out)
       for (const auto& [p, n] :
            inward_points(TopoDS::Face(ex.Current()), {0.5, 0.37, 0.63, 0.21, 0.79}, {0.5, 0.41, 0.59, 0.27, 0.73})) {
         const gp_Pnt q = p.Translated(gp_Vec(n) * (frac * size));
-        if (BRepClass3d_SolidClassifier(cell, q, 1e-9 * size).State() == TopAbs_IN) {
+        if (BRepClass3d_SolidClassifier(cell, q, Settings::resolution * size).State() == TopAbs_IN) {
           *out = to_eigen(q);
           return true;
         }
@@ -189,9 +189,9 @@ PointTestMaker trajectory_membership(const TopoDS_Shape& body, const ScrewJoint&
 }
 
 PointTest stage_membership(const StageInput& in) {
-  if (in.sd) return [in](const Eigen::Vector3d& x) { return in_swept_set(*in.sd, in.sd_motion, x, 1e-9 * in.size); };
+  if (in.sd) return [in](const Eigen::Vector3d& x) { return in_swept_set(*in.sd, in.sd_motion, x, Settings::resolution * in.size); };
   if (in.pe)
-    return [in](const Eigen::Vector3d& x) { return in_swept_image(*in.pe, in.sd_motion, x, 1e-9 * in.size, in.size); };
+    return [in](const Eigen::Vector3d& x) { return in_swept_image(*in.pe, in.sd_motion, x, Settings::resolution * in.size, in.size); };
   return stage_trajectory_membership(in, 1e-9);
 }
 
@@ -288,7 +288,7 @@ TopoDS_Shape stage_cells_solid(const StageInput& in, double fit_err, Candidates&
   // just off both of its sides. When those leave free edges where candidates that pruning dropped
   // lie (a thin strip of boundary on a face that is internal almost everywhere), such candidates
   // are restored and the arrangement is made again, at most three times.
-  const double fuzzy = std::max(1e-7 * in.size, 10 * fit_err);
+  const double fuzzy = std::max(Settings::sewing_gap * in.size, 10 * fit_err);
   const PointTestMaker member = [&in]() { return stage_membership(in); };
   BOPAlgo_MakerVolume mv;
   TopoDS_Shape result;

@@ -202,7 +202,7 @@ std::optional<std::vector<TopoDS_Edge>> touching_section(const TouchingSweep& sw
     for (const auto& r : runs) {
       std::vector<gp_Pnt> on;
       for (const UV& p : r)
-        if (on.empty() || on.back().Distance(at(p.x(), p.y())) > 1e-9 * size) on.push_back(at(p.x(), p.y()));
+        if (on.empty() || on.back().Distance(at(p.x(), p.y())) > Settings::resolution * size) on.push_back(at(p.x(), p.y()));
       if (on.size() < 2) continue;
       // (a run within 1e-4 of the size is a point where the curve meets the joint's axis: its orbit
       // is that point, on the copy at every t)

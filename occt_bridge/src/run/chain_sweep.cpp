@@ -40,7 +40,7 @@ TopoDS_Shape entity_stage(const StageInput& in, const EntitySpec& entity, const 
   const OrbitSolidPtr orbit_entity = make_orbit_solid(entity);
   const PointTestMaker stage_member = orbit_entity
                                           ? orbit_membership(orbit_placed(orbit_entity, j.transform(j.lo) * G), j, T)
-                                          : trajectory_membership(in.body, j, T, 1e-9 * in.size);
+                                          : trajectory_membership(in.body, j, T, Settings::resolution * in.size);
   // A boundary that left a piece out (a sliver whose crossing with an end copy no section found)
   // does not close. Crossings traced where sweeps touch the copies are then left to OCCT's general
   // section; when that does not close either, the arrangement of cells is made instead.

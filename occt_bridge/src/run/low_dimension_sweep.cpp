@@ -85,7 +85,7 @@ TopoDS_Shape finish_curve_or_surface(const TopoDS_Shape& shape, int dim, double 
       BRepAlgoAPI_BuilderAlgo gf;
       gf.SetArguments(faces);
       gf.SetRunParallel(true);
-      gf.SetFuzzyValue(1e-9 * size);
+      gf.SetFuzzyValue(Settings::resolution * size);
       gf.SetNonDestructive(true);
       gf.Build(stop_range());
       check_stop();

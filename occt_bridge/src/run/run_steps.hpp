@@ -18,6 +18,18 @@ namespace sweep::occt {
 /// The sweep of a spec whose motion is a one-parameter stage motion (`path`, `keyframes`).
 RunResult run_stage_motion_sweep(const Spec& spec, const RunOptions& opt);
 
+/// The run's tolerance: the spec's when it gives one, else Settings::default_tolerance x the model
+/// size; and the tolerance fitted curves and surfaces keep (Settings::fit_fraction x tol).
+struct RunTolerance {
+  double tol, fit_tol;
+};
+RunTolerance run_tolerance(double spec_tolerance, double size, const Settings& settings);
+
+/// The Monte Carlo volume of --verify against the B-rep volume: why they disagree (by more than
+/// 4.5 standard errors plus tol x size^2 + Settings::volume_relative_band x size^3), or empty
+/// (also when there is no Monte Carlo volume).
+std::string monte_carlo_disagreement(const Report& rep, double tol, double size, const Settings& settings);
+
 /// The largest side of the shape's box.
 double extent(const TopoDS_Shape& s);
 /// The model size: the extent of the entity's box corners carried by the motion sampled at the

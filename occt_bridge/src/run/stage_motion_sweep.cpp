@@ -96,7 +96,7 @@ IndependentMembership union_of(const std::vector<IndependentMembership>& parts) 
 IndependentMembership search_over_t(const std::shared_ptr<const SignedDistance>& sd, const StageMotion& m, double size,
                                     const Settings& settings) {
   const StageMotion* motion = &m;
-  const double resolution = 1e-9 * size;
+  const double resolution = Settings::resolution * size;
   const std::size_t budget = settings.membership_budget;
   const bool certified = std::isfinite(m.speed_bound(1.0));
   return {[sd, motion, resolution, budget]() -> MemberTest {
@@ -128,10 +128,7 @@ void finish_solid(TopoDS_Shape result, FinalChecks& check, const MemberTestMaker
     rep.mc_samples = mc.samples;
     rep.seconds["monte_carlo"] = since(t_mc);
   }
-  const double vtol = tol * size * size + opt.settings.volume_relative_band * size * size * size;
-  if (why.empty() && rep.has_mc && std::abs(rep.volume_brep - rep.volume_mc) > 4.5 * rep.volume_mc_stderr + vtol)
-    why = "B-rep and Monte Carlo volumes disagree (" + std::to_string(rep.volume_brep) + " vs " +
-          std::to_string(rep.volume_mc) + " +- " + std::to_string(rep.volume_mc_stderr) + ")";
+  if (why.empty()) why = monte_carlo_disagreement(rep, tol, size, opt.settings);
   rep.status = why.empty() ? "ok" : "failed";
   rep.message = why;
   res.shape = std::make_shared<Shape>(result);
@@ -147,7 +144,7 @@ TopoDS_Shape fused(const std::vector<TopoDS_Shape>& parts, double size) {
   fuse.SetArguments(args);
   fuse.SetTools(tools);
   fuse.SetRunParallel(true);
-  fuse.SetFuzzyValue(1e-9 * size);
+  fuse.SetFuzzyValue(Settings::resolution * size);
   fuse.SetNonDestructive(true);
   fuse.Build(stop_range());
   check_stop();
@@ -175,8 +172,8 @@ void screw_segments_sweep(const Spec& spec, const StageMotion& m, const Sizing& 
   const auto t_fit = Clock::now();
   double fit_err = sizing.fit_err;
   const double size = stage_model_size(sizing.shape, m);
-  rep.tol_requested = spec.tolerance > 0 ? spec.tolerance : 1e-6 * size;
-  const double tol = rep.tol_requested, fit_tol = 0.01 * tol;
+  const auto [tol, fit_tol] = run_tolerance(spec.tolerance, size, opt.settings);
+  rep.tol_requested = tol;
   const TopoDS_Shape raw = fitted_entity_shape(spec.entity, sizing.shape, fit_tol, &fit_err);
   const std::shared_ptr<const SignedDistance> sd(make_signed_distance(spec.entity));
   const std::unique_ptr<ParametricEntity> pe = ParametricEntity::make(spec.entity);
@@ -244,15 +241,15 @@ void ball_stage_sweep(const Spec& spec, const StageMotion& m, const Sizing& sizi
   double fit_err = sizing.fit_err;
   const TopoDS_Shape& raw = sizing.shape;
   const double size = stage_model_size(raw, m);
-  rep.tol_requested = spec.tolerance > 0 ? spec.tolerance : 1e-6 * size;
-  const double tol = rep.tol_requested;
+  const auto [tol, fit_tol] = run_tolerance(spec.tolerance, size, opt.settings);
+  rep.tol_requested = tol;
   const Eigen::Vector3d c0 = spec.entity.placement * spec.entity.center;
   const auto t_build = Clock::now();
   std::vector<TopoDS_Shape> tubes;
   for (std::size_t k = 0; k < pieces.size(); ++k) {
     if (opt.progress) opt.progress("the tube about the ball's path, piece " + std::to_string(k + 1));
     std::string why;
-    tubes.push_back(ball_path_sweep(c0, spec.entity.radius, *pieces[k], 0.01 * tol, size, &fit_err, nullptr, &why));
+    tubes.push_back(ball_path_sweep(c0, spec.entity.radius, *pieces[k], fit_tol, size, &fit_err, nullptr, &why));
     if (tubes.back().IsNull())
       throw ComputeError("a ball under this motion" +
                          (pieces.size() > 1 ? " (segment " + std::to_string(k + 1) + ")" : std::string()) + ": " + why);
@@ -277,8 +274,8 @@ void low_dimension_stage_sweep(const Spec& spec, const StageMotion& m, const Siz
   if (!pe) throw InternalError("no parametric map for a point or curve entity");
   double fit_err = sizing.fit_err;
   const double size = stage_model_size(sizing.shape, m);
-  rep.tol_requested = spec.tolerance > 0 ? spec.tolerance : 1e-6 * size;
-  const double fit_tol = 0.01 * rep.tol_requested;
+  const auto [tol, fit_tol] = run_tolerance(spec.tolerance, size, opt.settings);
+  rep.tol_requested = tol;
   const auto t_build = Clock::now();
   TopoDS_Compound comp;
   BRep_Builder bb;
@@ -316,7 +313,7 @@ void low_dimension_stage_sweep(const Spec& spec, const StageMotion& m, const Siz
       const Handle(Geom_BSplineSurface) srf = fit_grid_surface(exact, fit_tol, 0.1 * fit_tol, 16, 256, &err);
       if (srf.IsNull()) throw ComputeError("the surface swept by the curve could not be fitted within the tolerance");
       fit_err = std::max(fit_err, err);
-      bb.Add(comp, BRepBuilderAPI_MakeFace(srf, 1e-9 * size).Face());
+      bb.Add(comp, BRepBuilderAPI_MakeFace(srf, Settings::resolution * size).Face());
     }
   }
   rep.seconds["stages"] = since(t_build);

@@ -88,6 +88,19 @@ nlohmann::json Variety::to_json() const {
   return j;
 }
 
+RunTolerance run_tolerance(double spec_tolerance, double size, const Settings& settings) {
+  const double tol = spec_tolerance > 0 ? spec_tolerance : settings.default_tolerance * size;
+  return {tol, settings.fit_fraction * tol};
+}
+
+std::string monte_carlo_disagreement(const Report& rep, double tol, double size, const Settings& settings) {
+  if (!rep.has_mc) return {};
+  const double band = tol * size * size + settings.volume_relative_band * size * size * size;
+  if (std::abs(rep.volume_brep - rep.volume_mc) <= 4.5 * rep.volume_mc_stderr + band) return {};
+  return "B-rep and Monte Carlo volumes disagree (" + std::to_string(rep.volume_brep) + " vs " +
+         std::to_string(rep.volume_mc) + " +- " + std::to_string(rep.volume_mc_stderr) + ")";
+}
+
 RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
   const auto t_start = Clock::now();
   RunResult res;
@@ -119,9 +132,8 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
     // from a sampled stand-in (a polyline or a point cloud is enough for a bounding box).
     const TopoDS_Shape sizing = sizing_shape(spec.entity, &fit_err);
     const double size = model_size(sizing, motion);
-    rep.tol_requested = spec.tolerance > 0 ? spec.tolerance : 1e-6 * size;
-    const double tol = rep.tol_requested;
-    const double fit_tol = 0.01 * tol;
+    const auto [tol, fit_tol] = run_tolerance(spec.tolerance, size, opt.settings);
+    rep.tol_requested = tol;
     TopoDS_Shape raw = fitted_entity_shape(spec.entity, sizing, fit_tol, &fit_err);
     rep.seconds["entity"] = since(t_start);
     std::unique_ptr<SignedDistance> sd = make_signed_distance(spec.entity);
@@ -188,11 +200,7 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
       monte_carlo_check(spec.entity, clipped, raw, result, sd.get(), pe.get(), size, opt.settings, rep);
     }
 
-    // Verdict.
-    const double vtol = tol * size * size + opt.settings.volume_relative_band * size * size * size;
-    if (why.empty() && rep.has_mc && std::abs(rep.volume_brep - rep.volume_mc) > 4.5 * rep.volume_mc_stderr + vtol)
-      why = "B-rep and Monte Carlo volumes disagree (" + std::to_string(rep.volume_brep) + " vs " +
-            std::to_string(rep.volume_mc) + " +- " + std::to_string(rep.volume_mc_stderr) + ")";
+    if (why.empty()) why = monte_carlo_disagreement(rep, tol, size, opt.settings);
     rep.status = why.empty() ? "ok" : "failed";
     rep.message = why;
     res.shape = std::make_shared<Shape>(result);

@@ -101,7 +101,7 @@ TopoDS_Shape ball_path_sweep(const Eigen::Vector3d& c0, double r, const StageMot
     const double k_num = d1.cross(d2).norm();
     if (k_num > 0) rho_min = std::min(rho_min, v * v * v / k_num);
   }
-  if (!(vmin > 1e-9 * size / (m.hi() - m.lo()))) {
+  if (!(vmin > Settings::resolution * size / (m.hi() - m.lo()))) {
     *why = "the centre of the ball stops on its path (no normal circle there)";
     return {};
   }
@@ -210,7 +210,7 @@ TopoDS_Shape ball_path_sweep(const Eigen::Vector3d& c0, double r, const StageMot
   }
   const Handle(Geom_BSplineSurface) back = half_ball(s.c.front(), r, -s.tangent.front(), rim0, circle, p);
   const Handle(Geom_BSplineSurface) front = half_ball(s.c.back(), r, s.tangent.back(), rim1, circle, p);
-  const double tol = 1e-9 * size;
+  const double tol = Settings::resolution * size;
   std::vector<TopoDS_Face> fs;
   for (const Handle(Geom_BSplineSurface)& srf : {tube, back, front}) {
     double a0, a1, b0, b1;

@@ -270,7 +270,7 @@ std::vector<GrazingCurve> grazing_curves(const TopoDS_Face& face, const ScrewJoi
       // remove near-duplicate points
       std::vector<gp_Pnt> q;
       for (const auto& p : pts)
-        if (q.empty() || q.back().Distance(p) > 1e-9 * size) q.push_back(p);
+        if (q.empty() || q.back().Distance(p) > Settings::resolution * size) q.push_back(p);
       if (q.size() < 2) continue;
       double len = 0;
       for (std::size_t k = 1; k < q.size(); ++k) len += q[k].Distance(q[k - 1]);

@@ -242,7 +242,7 @@ TopoDS_Shape ball_screw_sweep(const Eigen::Vector3d& c, double r, const ScrewJoi
   Tube tb;
   if (!build_tube(c, r, j, T, fit_tol, 0.0, &tb)) return {};
   *fit_err = std::max(*fit_err, tb.error);
-  const double tol = 1e-9 * size;
+  const double tol = Settings::resolution * size;
   std::vector<TopoDS_Face> fs;
   for (const Handle(Geom_BSplineSurface)& srf : {tb.tube, tb.back, tb.front}) {
     double a0, a1, b0_, b1;
@@ -604,7 +604,7 @@ TopoDS_Shape ball_screw_sweep_overlap(const Eigen::Vector3d& c, double r, const 
   };
 
   // Faces. Edges are built on each face from their parameter-plane curves; sewing joins them.
-  const double etol = std::max(1e-9 * size, 0.1 * fit_tol);
+  const double etol = std::max(Settings::resolution * size, 0.1 * fit_tol);
   std::vector<TopoDS_Face> fs;
   std::vector<int> rl;
   auto face_of = [&](const Handle(Geom_Surface)& S, const std::vector<TopoDS_Edge>& edges) {
@@ -680,7 +680,7 @@ TopoDS_Shape ball_screw_sweep_overlap(const Eigen::Vector3d& c, double r, const 
                      edge_on(S, tongue, 0, M_PI, etol), segment_on(S, P(0, v1), P(0, 0), etol)}))
       return false;
     rl.push_back(role);
-    BRepBuilderAPI_MakeFace cap(S, uc, 0.5 * M_PI, 0, V, 1e-9 * size);
+    BRepBuilderAPI_MakeFace cap(S, uc, 0.5 * M_PI, 0, V, Settings::resolution * size);
     if (!cap.IsDone()) return false;
     fs.push_back(cap.Face());
     rl.push_back(role);
@@ -704,7 +704,7 @@ TopoDS_Shape ball_screw_sweep_overlap(const Eigen::Vector3d& c, double r, const 
         guard_ok[task - 1] = guard(task - 1);
       } else if (tube_face(0, vm) && tube_face(vm, V) && ball_faces(tb.back, back_tongue, a1, a2, umax_back, 1) &&
                  ball_faces(tb.front, front_tongue, b1, b2, umax_front, 2)) {
-        solid = sew_solid(fs, std::max(1e-7 * size, 20 * err), &out);
+        solid = sew_solid(fs, std::max(Settings::sewing_gap * size, 20 * err), &out);
       }
     };
   });

@@ -114,7 +114,7 @@ std::vector<TopoDS_Face> planar_curve_sweep(const Handle(Geom_Curve)& c, double 
   double cu, cv;
   ElSLib::Parameters(plane, gp_Pnt(0.5 * (x0 + x1), 0.5 * (y0 + y1), 0.5 * (z0 + z1)), cu, cv);
   TopoDS_Face big = BRepBuilderAPI_MakeFace(gpl, cu - half, cu + half, cv - half, cv + half, 1e-7).Face();
-  const TopoDS_Shape split = split_by_edges(big, tools, 1e-9 * size, SplitMode::Parallel);
+  const TopoDS_Shape split = split_by_edges(big, tools, Settings::resolution * size, SplitMode::Parallel);
   if (split.IsNull()) throw ComputeError("could not split the plane of a planar sweep");
 
   TopoDS_Compound kept;
@@ -125,8 +125,8 @@ std::vector<TopoDS_Face> planar_curve_sweep(const Handle(Geom_Curve)& c, double 
     const TopoDS_Face& f = TopoDS::Face(ex.Current());
     double u0, u1, v0, v1;
     BRepTools::UVBounds(f, u0, u1, v0, v1);
-    if (u0 < cu - half + 1e-9 * size || u1 > cu + half - 1e-9 * size || v0 < cv - half + 1e-9 * size ||
-        v1 > cv + half - 1e-9 * size)
+    if (u0 < cu - half + Settings::resolution * size || u1 > cu + half - Settings::resolution * size || v0 < cv - half + Settings::resolution * size ||
+        v1 > cv + half - Settings::resolution * size)
       continue;  // touches the outer square: outside
     BRepTopAdaptor_FClass2d fc(f, 1e-9);
     BRepAdaptor_Surface S(f);
@@ -141,10 +141,10 @@ std::vector<TopoDS_Face> planar_curve_sweep(const Handle(Geom_Curve)& c, double 
         TopoDS_Edge traj = path_edge(j.transform(-T) * x, j, 0.0, T, 1e-12 * size);
         if (traj.IsNull()) {
           BRepExtrema_DistShapeShape d(BRepBuilderAPI_MakeVertex(to_pnt(x)).Vertex(), e0);
-          inside = d.IsDone() && d.Value() < 1e-9 * size;
+          inside = d.IsDone() && d.Value() < Settings::resolution * size;
         } else {
           BRepExtrema_DistShapeShape d(traj, e0);
-          inside = d.IsDone() && d.Value() < 1e-9 * size;
+          inside = d.IsDone() && d.Value() < Settings::resolution * size;
         }
       }
     if (found && inside) {

@@ -71,7 +71,7 @@ std::vector<std::pair<int, std::vector<TopoDS_Face>>> revolve_pieces(const std::
       p.rc = {rc.c, a, b, rc.source};
       auto axial = [&](double s) { return w.dot(to_eigen(rc.c->Value(s)) - j.point); };
       double A = axial(a), B = axial(b);
-      if (std::abs(B - A) > 1e-9 * size) {
+      if (std::abs(B - A) > Settings::resolution * size) {
         p.profiled = true;
         p.a0 = std::min(A, B);
         p.a1 = std::max(A, B);
@@ -252,7 +252,7 @@ void add_edge_sweeps(const StageInput& in, double& fit_err, Candidates& cand, st
 std::vector<TopoDS_Face> split_at_grazing_curves(const TopoDS_Face& face, const TopTools_ListOfShape& tools,
                                                  double esize) {
   if (tools.IsEmpty()) return {face};
-  const TopoDS_Shape split = split_by_edges(face, tools, 1e-9 * esize, SplitMode::Parallel);
+  const TopoDS_Shape split = split_by_edges(face, tools, Settings::resolution * esize, SplitMode::Parallel);
   if (split.IsNull()) return {face};
   std::vector<TopoDS_Face> split_faces;
   double area = 0.0;

@@ -30,13 +30,13 @@ IndependentMembership independent_membership(const EntitySpec& entity, const Mot
   if (n == 1 && entity.dimension() == 3 && !sd) {
     const ScrewJoint j = clipped.joints[0];
     const TopoDS_Shape body = moved(moved(raw, clipped.home), j.transform(j.lo));
-    return {always_decided(trajectory_membership(body, j, j.hi - j.lo, 1e-9 * size)),
+    return {always_decided(trajectory_membership(body, j, j.hi - j.lo, Settings::resolution * size)),
             "trajectories against the entity's faces", {}};
   }
   if (sd) {
     return {[sd, clipped, size, budget]() -> MemberTest {
               return [sd, clipped, size, budget](const Eigen::Vector3d& x) {
-                return swept_set_membership(*sd, clipped, x, 1e-9 * size, budget);
+                return swept_set_membership(*sd, clipped, x, Settings::resolution * size, budget);
               };
             },
             "certified search over the joint box (signed distance)", {}};
@@ -48,7 +48,7 @@ IndependentMembership independent_membership(const EntitySpec& entity, const Mot
     const bool second_order = pe->num_params() <= 1;
     return {[pe, clipped, size, budget, second_order]() -> MemberTest {
               return [pe, clipped, size, budget, second_order](const Eigen::Vector3d& x) {
-                return swept_image_membership(*pe, clipped, x, 1e-9 * size, size, budget, true, second_order);
+                return swept_image_membership(*pe, clipped, x, Settings::resolution * size, size, budget, true, second_order);
               };
             },
             std::string("certified search over the joint and entity parameters") +
@@ -218,13 +218,13 @@ void monte_carlo_check(const EntitySpec& entity, const Motion& clipped, const To
   const std::size_t n = clipped.dof();
   const std::size_t chain_samples = std::max<std::size_t>(settings.mc_samples / 8, 20000);
   if (sd) {
-    mc = monte_carlo_volume([&](const Eigen::Vector3d& x) { return in_swept_set(*sd, m, x, 1e-9 * size); }, box,
+    mc = monte_carlo_volume([&](const Eigen::Vector3d& x) { return in_swept_set(*sd, m, x, Settings::resolution * size); }, box,
                             n == 1 ? settings.mc_samples : chain_samples, settings.seed);
   } else if (n == 1) {
     const ScrewJoint& j = clipped.joints[0];
     const double T = j.hi - j.lo;
     TopoDS_Shape body = moved(moved(raw, clipped.home), j.transform(j.lo));
-    TrajectoryMembership by_trajectory(body, rep.dimension == 3 && entity.dimension() == 3, j, T, 1e-9 * size);
+    TrajectoryMembership by_trajectory(body, rep.dimension == 3 && entity.dimension() == 3, j, T, Settings::resolution * size);
     mc = monte_carlo_volume([&](const Eigen::Vector3d& x) { return by_trajectory(x); }, box,
                             std::min<std::size_t>(settings.mc_samples, 20000), settings.seed);
   } else if (pe) {
@@ -233,10 +233,10 @@ void monte_carlo_check(const EntitySpec& entity, const Motion& clipped, const To
     // solid too, and where the two disagree one of them is wrong.
     BRepClass3d_SolidClassifier in_result(result);
     const auto in_solid = [&](const Eigen::Vector3d& x) {
-      in_result.Perform(to_pnt(x), 1e-9 * size);
+      in_result.Perform(to_pnt(x), Settings::resolution * size);
       return in_result.State() == TopAbs_IN;
     };
-    mc = monte_carlo_volume([&](const Eigen::Vector3d& x) { return in_swept_image(*pe, m, x, 1e-9 * size, size); },
+    mc = monte_carlo_volume([&](const Eigen::Vector3d& x) { return in_swept_image(*pe, m, x, Settings::resolution * size, size); },
                             box, chain_samples, settings.seed, in_solid);
     rep.mc_compared = true;
   } else {

@@ -23,6 +23,14 @@ struct Settings {
   /// accuracy (0: not checked).
   double independent_volume_rel_tol = 1e-5;
 
+  // --- geometric resolution (constants of the kernel)
+  /// Two points closer than this are one (x size): the fuzzy value of OCCT's booleans and splits,
+  /// the tolerance of its classifiers, the resolution of the memberships' searches.
+  static constexpr double resolution = 1e-9;
+  /// Faces are sewn, and cells fused, across gaps up to this (x size), or a multiple of the fit
+  /// error when that is larger.
+  static constexpr double sewing_gap = 1e-7;
+
   // --- building a stage's solid from its sweep boundary
   /// How far off a piece of the candidate boundary its two sides are tested (x size), and again at
   /// twice that; a piece is kept when exactly one side is in the swept set.
