@@ -31,10 +31,17 @@ std::shared_ptr<const StageMotion> rolling() {
 }
 
 /// Every traced point of the face's grazing set at t, in the body frame.
+/// Points of the grazing set: its curves' points and points along the sides on which it lies (a
+/// seam on a grazing line), poles left out.
 std::vector<Vector3d> grazing_points(const Patch& face, const StageMotion& m, double t, int n = 64) {
   std::vector<Vector3d> out;
-  for (const auto& line : grazing_set(face, m, t, n).curves)
+  const GrazingSet g = grazing_set(face, m, t, n);
+  for (const auto& line : g.curves)
     for (const Vector2d& s : line) out.push_back(face.eval(s.x(), s.y()).x);
+  for (int side : g.sides) {
+    if ((side_point(face, side, 0) - side_point(face, side, 0.5)).norm() < 1e-12) continue;  // a pole
+    for (int i = 0; i <= n; ++i) out.push_back(side_point(face, side, double(i) / n));
+  }
   return out;
 }
 

@@ -64,8 +64,17 @@ using Eigen::Vector3d;
 
 Frame placed_frame(const Eigen::Isometry3d& placement, const Vector3d& origin, const Vector3d& axis) {
   const Vector3d z = axis.normalized();
-  const Vector3d t = std::abs(z.x()) < 0.9 ? Vector3d::UnitX() : Vector3d::UnitY();
-  const Vector3d x = z.cross(t).normalized();
+  // x normal to z with one of its coordinates zero: the one of z's smallest magnitude (the first
+  // such), the other two from z's larger two, so that OCCT's primitives have their seams here too
+  const double a = z.x(), b = z.y(), c = z.z(), A = std::abs(a), B = std::abs(b), C = std::abs(c);
+  Vector3d x;
+  if (B <= A && B <= C)
+    x = A > C ? Vector3d(-c, 0, a) : Vector3d(c, 0, -a);
+  else if (A <= B && A <= C)
+    x = B > C ? Vector3d(0, -c, b) : Vector3d(0, c, -b);
+  else
+    x = A > B ? Vector3d(-b, a, 0) : Vector3d(b, -a, 0);
+  x.normalize();
   Frame f;
   f.o = placement * origin;
   f.z = placement.linear() * z;

@@ -16,7 +16,9 @@ struct Frame {
 };
 
 /// The frame at `origin` whose z is `axis`, both given in the entity's own frame, carried into
-/// the world by `placement` (x: the axis crossed with world x, or world y when they are close).
+/// the world by `placement` (x: normal to the axis with the coordinate zero where the axis's is
+/// smallest, as OCCT's axis placements take it, so that faces have their seams where OCCT's
+/// primitives have them).
 Frame placed_frame(const Eigen::Isometry3d& placement, const Eigen::Vector3d& origin, const Eigen::Vector3d& axis);
 
 /// The face swept by the profile (rho(v), z(v)), v in [v0, v1], turned a whole turn about f's z

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "occt_bridge/sweeper.hpp"
+#include "sweep/entity.hpp"
 #include "sweep/motion.hpp"
 #include "sweep/spec.hpp"
 
@@ -41,7 +42,11 @@ TopoDS_Shape moved(const TopoDS_Shape& s, const Eigen::Isometry3d& T);
 /// The entity as an OCCT shape in its own frame with its placement applied.
 /// Solids for solid kinds, a face for `surface`, an edge for `curve`, a vertex for `point`.
 /// `tol` is the fitting tolerance for parametric kinds; `fit_error` receives the measured error.
-TopoDS_Shape entity_shape(const EntitySpec& e, double tol, double* fit_error);
+/// `core`: the core's entity of `e` when the caller has it (else it is built here).
+TopoDS_Shape entity_shape(const EntitySpec& e, double tol, double* fit_error, const Entity* core = nullptr);
+/// A primitive solid (sphere, box, cylinder, cone, torus) as the OCCT solid its core patches
+/// (sweep/entity.hpp) make, each on its exact surface; null for other kinds.
+TopoDS_Shape primitive_from_patches(const Entity& entity);
 
 /// Fits a B-spline surface to exact(fu, fv), fu and fv fractions in [0, 1], on an (n+1)^2 grid, n
 /// doubling from n0 to nmax until the distance measured between grid points is at most tol
@@ -54,8 +59,8 @@ Handle(Geom_BSplineSurface) fit_grid_surface(const std::function<gp_Pnt(double, 
 TopoDS_Shape sampled_points(const EntitySpec& e);
 
 /// The entity's shape for its extent, before the tolerance is known: parametric curves and surfaces
-/// as sampled points, every other kind as entity_shape builds it (within 1e-9).
-TopoDS_Shape sizing_shape(const EntitySpec& e, double* fit_error);
+/// as sampled points, every other kind as entity_shape builds it (within 1e-9; `core` as there).
+TopoDS_Shape sizing_shape(const EntitySpec& e, double* fit_error, const Entity* core = nullptr);
 /// The shape the stages sweep: `sizing` itself, but parametric curves and surfaces fitted within
 /// fit_tol.
 TopoDS_Shape fitted_entity_shape(const EntitySpec& e, const TopoDS_Shape& sizing, double fit_tol, double* fit_error);

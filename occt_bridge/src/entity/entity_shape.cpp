@@ -3,11 +3,6 @@
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepBuilderAPI_MakeVertex.hxx>
 #include <BRepBuilderAPI_Transform.hxx>
-#include <BRepPrimAPI_MakeBox.hxx>
-#include <BRepPrimAPI_MakeCone.hxx>
-#include <BRepPrimAPI_MakeCylinder.hxx>
-#include <BRepPrimAPI_MakeSphere.hxx>
-#include <BRepPrimAPI_MakeTorus.hxx>
 #include <BRepTools.hxx>
 #include <BRep_Builder.hxx>
 #include <BRepBuilderAPI_MakeWire.hxx>
@@ -35,9 +30,13 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <TopoDS_Shell.hxx>
+#include <TopoDS_Solid.hxx>
 
 #include "base/internal.hpp"
 #include "entity/elliptic_cylinder.hpp"
+#include "faces/patch_face.hpp"
+#include "sweep/entity.hpp"
 #include "sweep/error.hpp"
 
 namespace sweep::occt {
@@ -55,10 +54,6 @@ TopoDS_Shape moved(const TopoDS_Shape& s, const Eigen::Isometry3d& T) {
 }
 
 namespace {
-
-gp_Ax2 axis_frame(const Eigen::Vector3d& origin, const Eigen::Vector3d& axis) {
-  return gp_Ax2(to_pnt(origin), gp_Dir(axis.x(), axis.y(), axis.z()));
-}
 
 gp_Pnt eval_xyz(const EntitySpec& e, const double* uv) {
   return gp_Pnt(e.xyz[0].eval(uv), e.xyz[1].eval(uv), e.xyz[2].eval(uv));
@@ -275,8 +270,8 @@ namespace {
 bool fitted_once_tolerance_known(const EntitySpec& e) { return e.kind == EntityKind::Curve || e.kind == EntityKind::Surface; }
 }  // namespace
 
-TopoDS_Shape sizing_shape(const EntitySpec& e, double* fit_error) {
-  return fitted_once_tolerance_known(e) ? sampled_points(e) : entity_shape(e, 1e-9, fit_error);
+TopoDS_Shape sizing_shape(const EntitySpec& e, double* fit_error, const Entity* core) {
+  return fitted_once_tolerance_known(e) ? sampled_points(e) : entity_shape(e, 1e-9, fit_error, core);
 }
 
 TopoDS_Shape fitted_entity_shape(const EntitySpec& e, const TopoDS_Shape& sizing, double fit_tol, double* fit_error) {
@@ -306,29 +301,48 @@ TopoDS_Shape read_shape_file(const std::string& path, const std::string& pointer
   return s;
 }
 
-TopoDS_Shape entity_shape(const EntitySpec& e, double tol, double* fit_error) {
+TopoDS_Shape primitive_from_patches(const Entity& entity) {
+  if (entity.dimension() != 3) return {};
+  for (const PatchPtr& p : entity.faces())
+    if (p->form().kind == PatchForm::Kind::General) return {};
+  const double scale = entity.box().sizes().maxCoeff();
+  std::vector<TopoDS_Face> faces;
+  for (const PatchPtr& p : entity.faces()) {
+    const PatchFace f = patch_face(*p, Settings::resolution * scale);
+    if (!f.exact || f.error > 1e-12 * scale) return {};
+    faces.push_back(f.face);
+  }
+  if (faces.size() == 1) {  // one closed face (a ball, a torus): its shell is the solid's
+    BRep_Builder b;
+    TopoDS_Shell shell;
+    b.MakeShell(shell);
+    b.Add(shell, faces.front());
+    shell.Closed(true);
+    TopoDS_Solid solid;
+    b.MakeSolid(solid);
+    b.Add(solid, shell);
+    return solid;
+  }
+  return sew_solid(faces, Settings::resolution * scale);
+}
+
+TopoDS_Shape entity_shape(const EntitySpec& e, double tol, double* fit_error, const Entity* core) {
   TopoDS_Shape s;
   switch (e.kind) {
+    case EntityKind::Sphere:
+    case EntityKind::Box:
+    case EntityKind::Cylinder:
+    case EntityKind::Cone:
+    case EntityKind::Torus: {
+      // placed already, on the exact surfaces of their core patches
+      const EntityPtr built = core ? nullptr : make_entity(e);
+      s = primitive_from_patches(core ? *core : *built);
+      if (s.IsNull())
+        throw ComputeError(std::string("the faces of the ") + to_string(e.kind) + " entity do not make a valid solid");
+      return s;
+    }
     case EntityKind::Point:
       s = BRepBuilderAPI_MakeVertex(to_pnt(e.at)).Vertex();
-      break;
-    case EntityKind::Sphere:
-      s = BRepPrimAPI_MakeSphere(to_pnt(e.center), e.radius).Shape();
-      break;
-    case EntityKind::Box:
-      s = BRepPrimAPI_MakeBox(to_pnt(e.min), to_pnt(e.max)).Shape();
-      break;
-    case EntityKind::Cylinder:
-      s = BRepPrimAPI_MakeCylinder(axis_frame(e.base, e.axis), e.radius, e.height).Shape();
-      break;
-    case EntityKind::Cone:
-      if (std::abs(e.radius1 - e.radius2) < 1e-12 * std::max(e.radius1, e.radius2))
-        s = BRepPrimAPI_MakeCylinder(axis_frame(e.base, e.axis), e.radius1, e.height).Shape();
-      else
-        s = BRepPrimAPI_MakeCone(axis_frame(e.base, e.axis), e.radius1, e.radius2, e.height).Shape();
-      break;
-    case EntityKind::Torus:
-      s = BRepPrimAPI_MakeTorus(axis_frame(e.center, e.axis), e.major, e.minor).Shape();
       break;
     case EntityKind::EllipticCylinder:
       s = elliptic_cylinder_shape(e, tol, fit_error);

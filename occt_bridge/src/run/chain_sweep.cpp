@@ -25,8 +25,9 @@ namespace {
 /// The entity's own stage (a solid) without the arrangement of cells: built directly when it is a
 /// ball under a screw, else from its sweep boundary, whose pieces are classified by the entity's
 /// orbit intervals (a primitive) or by trajectories against the body's faces. Null when neither
-/// builds it (then the cells do). `G`: the entity's placement before the stage.
-TopoDS_Shape entity_stage(const StageInput& in, const EntitySpec& entity, const Eigen::Isometry3d& G,
+/// builds it (then the cells do). `orbit_entity`: the entity's orbit solid (null when it has none);
+/// `G`: the entity's placement before the stage.
+TopoDS_Shape entity_stage(const StageInput& in, const OrbitSolidPtr& orbit_entity, const Eigen::Isometry3d& G,
                           const RunOptions& opt, double& fit_err, Report& rep, Candidates& stage_cands,
                           const std::function<void(const std::string&)>& step) {
   const ScrewJoint& j = in.j;
@@ -37,7 +38,6 @@ TopoDS_Shape entity_stage(const StageInput& in, const EntitySpec& entity, const 
     rep.cells += 1;
     return direct;
   }
-  const OrbitSolidPtr orbit_entity = make_orbit_solid(entity);
   const PointTestMaker stage_member = orbit_entity
                                           ? orbit_membership(orbit_placed(orbit_entity, j.transform(j.lo) * G), j, T)
                                           : trajectory_membership(in.body, j, T, Settings::resolution * in.size);
@@ -185,17 +185,17 @@ ChainSweep sweep_chain(const ChainEntity& entity, const Motion& motion, bool jud
                        double& fit_err, Report& rep, const std::function<void(const std::string&)>& step) {
   ChainSweep out;
   out.raw = entity.raw;
-  const bool parametric = entity.spec.kind == EntityKind::Curve || entity.spec.kind == EntityKind::Surface;
+  const bool parametric = entity.run.spec.kind == EntityKind::Curve || entity.run.spec.kind == EntityKind::Surface;
   // the entity's map as the stages see it (its ranges extended where a joint slides it along itself)
-  std::shared_ptr<const ParametricEntity> stage_pe = ParametricEntity::make(entity.spec);
+  std::shared_ptr<const ParametricEntity> stage_pe = entity.run.pe;
   TopoDS_Shape shape = moved(out.raw, motion.home);
 
   // Stages, innermost joint first: each sweeps the previous stage's set. While that set is still
   // the parametric entity (placed by G), a joint that slides it along itself only extends one of
   // its parameter ranges: the set keeps its dimension and the next joint sweeps it.
-  int dim = entity.spec.dimension();
+  int dim = entity.run.spec.dimension();
   const int n = int(motion.dof());
-  EntitySpec current = entity.spec;
+  EntitySpec current = entity.run.spec;
   Eigen::Isometry3d G = motion.home;
   bool entity_intact = parametric;
   for (int i = n - 1; i >= 0; --i) {
@@ -227,7 +227,7 @@ ChainSweep sweep_chain(const ChainEntity& entity, const Motion& motion, bool jud
       const auto t_stage = Clock::now();
       const StageInput in{body, dim, j, T, nullptr, nullptr, motion, extent(body), entity.size, entity.tol,
                           entity.fit_tol, n - i, i + 1};
-      const TopoDS_Shape solid = entity_stage(in, entity.spec, G, opt, fit_err, rep, stage_cands, step);
+      const TopoDS_Shape solid = entity_stage(in, entity.run.orbit, G, opt, fit_err, rep, stage_cands, step);
       if (!solid.IsNull()) {
         shape = solid;
         built = true;
@@ -239,10 +239,10 @@ ChainSweep sweep_chain(const ChainEntity& entity, const Motion& motion, bool jud
       sd_motion.home = G;
       sd_motion.joints = {j};
       sd_motion.joints[0].hi = j.lo + T;
-      const bool use_sd = entity.sd && i == n - 1 && dim == 3;
+      const bool use_sd = entity.run.sd && i == n - 1 && dim == 3;
       // A surface entity's first stage: points are classified against its parametric map.
       const bool use_pe = stage_pe && entity_intact && dim == 2;
-      const StageInput in{body, dim, j, T, use_sd ? entity.sd : nullptr, nullptr, sd_motion, extent(body),
+      const StageInput in{body, dim, j, T, use_sd ? entity.run.sd.get() : nullptr, nullptr, sd_motion, extent(body),
                           entity.size, entity.tol, entity.fit_tol, n - i, i + 1};
       shape = cells_stage(in, entity, use_pe ? stage_pe : nullptr, judged && i == 0, opt, fit_err, rep, stage_cands,
                           &out.redo_last, step);

@@ -10,6 +10,7 @@
 
 #include "base/internal.hpp"
 #include "arrangement/stage_sweep.hpp"
+#include "sweep/entity.hpp"
 #include "sweep/membership.hpp"
 #include "sweep/settings.hpp"
 
@@ -36,13 +37,22 @@ double extent(const TopoDS_Shape& s);
 /// ends and middles of the joint ranges (a point entity has no extent of its own).
 double model_size(const TopoDS_Shape& raw, const Motion& motion);
 
-/// The entity as the stages of a chain take it: its spec, its shape before the motion's home pose
-/// (parametric entities fitted within fit_tol), its signed distance (or null), the model size and
-/// the tolerances.
-struct ChainEntity {
+/// The entity of a run, built once from its spec: the core's entity (null for B-rep files), and
+/// its signed distance, parametric map and orbit solid (each null when it has none).
+struct RunEntity {
+  explicit RunEntity(const EntitySpec& spec);
   const EntitySpec& spec;
+  EntityPtr core;
+  std::shared_ptr<const SignedDistance> sd;
+  std::shared_ptr<const ParametricEntity> pe;
+  OrbitSolidPtr orbit;
+};
+
+/// The entity as the stages of a chain take it: the run's entity, its shape before the motion's
+/// home pose (parametric entities fitted within fit_tol), the model size and the tolerances.
+struct ChainEntity {
+  const RunEntity& run;
   TopoDS_Shape raw;
-  const SignedDistance* sd;
   double size, tol, fit_tol;
 };
 
@@ -91,9 +101,8 @@ struct IndependentMembership {
 /// with the entity's own faces for other solids under one joint, the certified search over the
 /// joint box for primitives under chains and for points, curves and surfaces. `clipped`: the
 /// motion with no revolute joint beyond a whole turn; `raw`: the entity before the motion's home.
-IndependentMembership independent_membership(const EntitySpec& entity, const Motion& clipped, const TopoDS_Shape& raw,
-                                             const SignedDistance* sd, const ParametricEntity* pe, double size,
-                                             const Settings& settings);
+IndependentMembership independent_membership(const RunEntity& entity, const Motion& clipped, const TopoDS_Shape& raw,
+                                             double size, const Settings& settings);
 
 /// The checks of the final solid, which fill in the report: the reason it fails, or empty. Bands
 /// come from the requested tolerance and the model size, never from what the computation achieved.
@@ -130,9 +139,8 @@ class FinalChecks {
 
 /// The Monte Carlo volume of --verify into the report, in the solid's box enlarged by 1 % of the
 /// model size, with a membership independent of the one that classified the cells.
-void monte_carlo_check(const EntitySpec& entity, const Motion& clipped, const TopoDS_Shape& raw,
-                       const TopoDS_Shape& result, const SignedDistance* sd, const ParametricEntity* pe, double size,
-                       const Settings& settings, Report& rep);
+void monte_carlo_check(const RunEntity& entity, const Motion& clipped, const TopoDS_Shape& raw,
+                       const TopoDS_Shape& result, double size, const Settings& settings, Report& rep);
 
 /// Each variety's share of the result's boundary (area and divergence volume): a face of the
 /// result lies on the surface of the candidate it was cut from, or, merged from several, on the

@@ -46,8 +46,9 @@ Eigen::AlignedBox3d box_of(const TopoDS_Shape& s) {
   return Eigen::AlignedBox3d(Eigen::Vector3d(x0, y0, z0), Eigen::Vector3d(x1, y1, z1));
 }
 
-/// The entity's shape for its extent (sizing_shape), built once per run, and its fit error.
+/// The run's entity, its shape for its extent (sizing_shape) and its fit error, built once per run.
 struct Sizing {
+  RunEntity entity;
   TopoDS_Shape shape;
   double fit_err = 0;
 };
@@ -175,8 +176,6 @@ void screw_segments_sweep(const Spec& spec, const StageMotion& m, const Sizing& 
   const auto [tol, fit_tol] = run_tolerance(spec.tolerance, size, opt.settings);
   rep.tol_requested = tol;
   const TopoDS_Shape raw = fitted_entity_shape(spec.entity, sizing.shape, fit_tol, &fit_err);
-  const std::shared_ptr<const SignedDistance> sd(make_signed_distance(spec.entity));
-  const std::unique_ptr<ParametricEntity> pe = ParametricEntity::make(spec.entity);
   const Eigen::AlignedBox3d entity_box = box_of(raw);
   rep.seconds["entity"] = rep.seconds.value("entity", 0.0) + since(t_fit);
   const auto segments = KeyframeMotion::merged(screw_segments, size);
@@ -200,7 +199,7 @@ void screw_segments_sweep(const Spec& spec, const StageMotion& m, const Sizing& 
     motion.joints = {seg.joint};
     motion.home = seg.start;
     try {
-      const ChainSweep chain = sweep_chain({spec.entity, raw, sd.get(), size, tol, fit_tol}, motion, false, chain_opt,
+      const ChainSweep chain = sweep_chain({sizing.entity, raw, size, tol, fit_tol}, motion, false, chain_opt,
                                            fit_err, rep, step);
       parts.push_back(chain.shape);
       dim = chain.dim;
@@ -210,7 +209,7 @@ void screw_segments_sweep(const Spec& spec, const StageMotion& m, const Sizing& 
     if (dim == 3) {
       Motion clipped = motion;  // a revolute joint beyond a whole turn covers nothing new
       if (seg.joint.type == JointType::Revolute) clipped.joints[0].hi = std::min(seg.joint.hi, seg.joint.lo + 2 * M_PI);
-      members.push_back(independent_membership(spec.entity, clipped, raw, sd.get(), pe.get(), size, opt.settings));
+      members.push_back(independent_membership(sizing.entity, clipped, raw, size, opt.settings));
       if (!members.back().test) throw ComputeError(name + ": no membership test independent of the solid exists");
       true_box.extend(swept_box(entity_box, clipped));
     }
@@ -259,7 +258,7 @@ void ball_stage_sweep(const Spec& spec, const StageMotion& m, const Sizing& sizi
   rep.varieties = 3 * int(pieces.size());
   rep.cells = int(pieces.size());
   const IndependentMembership member =
-      search_over_t(std::shared_ptr<const SignedDistance>(make_signed_distance(spec.entity)), m, size, opt.settings);
+      search_over_t(sizing.entity.sd, m, size, opt.settings);
   FinalChecks check(rep, member, stage_swept_box(box_of(raw), m), tol, size, fit_err, opt.settings, "");
   finish_solid(solid, check, member.test, size, tol, opt, res);
 }
@@ -270,7 +269,7 @@ void low_dimension_stage_sweep(const Spec& spec, const StageMotion& m, const Siz
                                const std::vector<const StageMotion*>& pieces, const RunOptions& opt, RunResult& res) {
   Report& rep = res.report;
   const int dim = spec.entity.dimension();
-  const std::unique_ptr<ParametricEntity> pe = ParametricEntity::make(spec.entity);
+  const std::shared_ptr<const ParametricEntity>& pe = sizing.entity.pe;
   if (!pe) throw InternalError("no parametric map for a point or curve entity");
   double fit_err = sizing.fit_err;
   const double size = stage_model_size(sizing.shape, m);
@@ -333,8 +332,8 @@ RunResult run_stage_motion_sweep(const Spec& spec, const RunOptions& opt) {
   const StageMotion& m = *spec.motion.stage;
   try {
     OCC_CATCH_SIGNALS
-    Sizing sizing;
-    sizing.shape = sizing_shape(spec.entity, &sizing.fit_err);
+    Sizing sizing{RunEntity(spec.entity), {}, 0.0};
+    sizing.shape = sizing_shape(spec.entity, &sizing.fit_err, sizing.entity.core.get());
     rep.seconds["entity"] = since(t_start);
     const auto* km = dynamic_cast<const KeyframeMotion*>(&m);
     auto segments = km ? km->screw_segments() : std::nullopt;

@@ -88,6 +88,14 @@ nlohmann::json Variety::to_json() const {
   return j;
 }
 
+RunEntity::RunEntity(const EntitySpec& s)
+    : spec(s), core(make_entity(s)), pe(ParametricEntity::make(s)) {
+  if (core) {
+    sd = core->distance_bound();
+    orbit = core->orbit_solid();
+  }
+}
+
 RunTolerance run_tolerance(double spec_tolerance, double size, const Settings& settings) {
   const double tol = spec_tolerance > 0 ? spec_tolerance : settings.default_tolerance * size;
   return {tol, settings.fit_fraction * tol};
@@ -128,17 +136,16 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
     OCC_CATCH_SIGNALS
     // Size and tolerance from the entity and the reach of the motion.
     double fit_err = 0;
+    const RunEntity entity(spec.entity);
     // Parametric curves and surfaces are fitted once the tolerance is known; their extent comes
     // from a sampled stand-in (a polyline or a point cloud is enough for a bounding box).
-    const TopoDS_Shape sizing = sizing_shape(spec.entity, &fit_err);
+    const TopoDS_Shape sizing = sizing_shape(spec.entity, &fit_err, entity.core.get());
     const double size = model_size(sizing, motion);
     const auto [tol, fit_tol] = run_tolerance(spec.tolerance, size, opt.settings);
     rep.tol_requested = tol;
     TopoDS_Shape raw = fitted_entity_shape(spec.entity, sizing, fit_tol, &fit_err);
     rep.seconds["entity"] = since(t_start);
-    std::unique_ptr<SignedDistance> sd = make_signed_distance(spec.entity);
-    const std::unique_ptr<ParametricEntity> pe = ParametricEntity::make(spec.entity);
-    ChainSweep chain = sweep_chain({spec.entity, raw, sd.get(), size, tol, fit_tol}, motion, true, opt, fit_err, rep, step);
+    ChainSweep chain = sweep_chain({entity, raw, size, tol, fit_tol}, motion, true, opt, fit_err, rep, step);
     raw = chain.raw;
     const int n = int(motion.dof());
     const int dim = chain.dim;
@@ -164,7 +171,7 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
       return Eigen::AlignedBox3d(Eigen::Vector3d(x0, y0, z0), Eigen::Vector3d(x1, y1, z1));
     }();
     FinalChecks check_result(
-        rep, independent_membership(spec.entity, clipped, raw, sd.get(), pe.get(), size, opt.settings),
+        rep, independent_membership(entity, clipped, raw, size, opt.settings),
         swept_box(entity_box, clipped), tol, size, fit_err, opt.settings,
         "no membership test independent of the solid exists for a " + std::string(to_string(spec.entity.kind)) +
             " entity under " + std::to_string(n) + " joints: the solid cannot be checked");
@@ -197,7 +204,7 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
 
     if (opt.verify) {
       step("Monte Carlo volume");
-      monte_carlo_check(spec.entity, clipped, raw, result, sd.get(), pe.get(), size, opt.settings, rep);
+      monte_carlo_check(entity, clipped, raw, result, size, opt.settings, rep);
     }
 
     if (why.empty()) why = monte_carlo_disagreement(rep, tol, size, opt.settings);

@@ -15,11 +15,13 @@
 
 namespace sweep::occt {
 
-IndependentMembership independent_membership(const EntitySpec& entity, const Motion& clipped, const TopoDS_Shape& raw,
-                                             const SignedDistance* sd, const ParametricEntity* pe, double size,
-                                             const Settings& settings) {
+IndependentMembership independent_membership(const RunEntity& run_entity, const Motion& clipped, const TopoDS_Shape& raw,
+                                             double size, const Settings& settings) {
   const std::size_t n = clipped.dof();
-  const OrbitSolidPtr orbit_entity = make_orbit_solid(entity);
+  const EntitySpec& entity = run_entity.spec;
+  const OrbitSolidPtr& orbit_entity = run_entity.orbit;
+  const std::shared_ptr<const SignedDistance> sd = run_entity.sd;
+  const std::shared_ptr<const ParametricEntity> pe = run_entity.pe;
   const std::size_t budget = settings.membership_budget;
   if (n == 1 && orbit_entity) {
     const ScrewJoint j = clipped.joints[0];
@@ -204,9 +206,11 @@ std::string FinalChecks::independent_volume_check() {
   return "";
 }
 
-void monte_carlo_check(const EntitySpec& entity, const Motion& clipped, const TopoDS_Shape& raw,
-                       const TopoDS_Shape& result, const SignedDistance* sd, const ParametricEntity* pe, double size,
-                       const Settings& settings, Report& rep) {
+void monte_carlo_check(const RunEntity& run_entity, const Motion& clipped, const TopoDS_Shape& raw,
+                       const TopoDS_Shape& result, double size, const Settings& settings, Report& rep) {
+  const EntitySpec& entity = run_entity.spec;
+  const SignedDistance* sd = run_entity.sd.get();
+  const ParametricEntity* pe = run_entity.pe.get();
   const auto t_mc = Clock::now();
   Eigen::AlignedBox3d box(Eigen::Vector3d(rep.bbox_min[0], rep.bbox_min[1], rep.bbox_min[2]),
                           Eigen::Vector3d(rep.bbox_max[0], rep.bbox_max[1], rep.bbox_max[2]));

@@ -34,7 +34,8 @@ struct GrazingSet {
   /// repeats its first point at the end.
   std::vector<std::vector<Eigen::Vector2d>> curves;
   /// Sides of the domain (0: v = lo, 1: u = hi, 2: v = hi, 3: u = lo) along which g vanishes
-  /// everywhere (the face grazes all along them: a seam line, a rim).
+  /// everywhere (the face grazes all along them: a seam line, a rim; or the side is a pole, where
+  /// the normal vanishes).
   std::vector<int> sides;
 };
 
