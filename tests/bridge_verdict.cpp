@@ -1,8 +1,12 @@
 // The verdict on solids known to be wrong: each must fail against the independent membership.
+#include <BRepAlgoAPI_Common.hxx>
 #include <BRepAlgoAPI_Cut.hxx>
 #include <BRepAlgoAPI_Fuse.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
+#include <BRepPrimAPI_MakeSphere.hxx>
+#include <BRepGProp.hxx>
+#include <GProp_GProps.hxx>
 #include <gp_Ax1.hxx>
 #include <gp_Ax2.hxx>
 
@@ -11,6 +15,7 @@
 #include "sweep/orbit.hpp"
 #include "sweep/settings.hpp"
 #include "sweep/spec.hpp"
+#include "run/run_steps.hpp"
 #include "verdict/verdict.hpp"
 
 using namespace sweep;
@@ -106,4 +111,62 @@ TEST_CASE("Verdict: the bound on the symmetric difference follows Wilson's inter
   CHECK(proportion_upper_bound(0, 4096, 0.95) == Approx(2.7055 / (4096 + 2.7055)).epsilon(0.01));
   CHECK(proportion_upper_bound(40, 4096, 0.95) > 40.0 / 4096);
   CHECK(proportion_upper_bound(40, 4096, 0.95) < 1.6 * 40.0 / 4096);
+}
+
+namespace {
+
+/// A hemispherical shell of radius 5 (z >= 0) extruded 5 along z, judged by the membership the
+/// run takes for a surface under one joint (trajectories against the surface).
+VerdictResult judge_extruded_shell(const TopoDS_Shape& s) {
+  const Spec spec = parse_spec(R"json({"sweep": 1, "entity": {"kind": "surface",
+      "params": {"u": [0, 6.283185307179586], "v": [0, 1.5707963267948966]},
+      "xyz": ["-5*cos(u)*sin(v)", "-5*sin(u)*sin(v)", "5*cos(v)"]},
+      "motion": {"kind": "axes", "joints": [{"type": "prismatic", "direction": [0, 0, 1], "range": [0, 5]}]}})json",
+                               ".");
+  const Settings settings;
+  const double size = 10, tol = 1e-6 * size;
+  const occt::RunEntity entity(spec.entity);
+  double fit_err = 0;
+  const TopoDS_Shape raw = entity_shape(spec.entity, 0.01 * tol, &fit_err);
+  const IndependentMembership member = independent_membership(entity, spec.motion.motion, raw, size, settings);
+  REQUIRE(member.test);
+  CHECK(member.name == "trajectories against the surface");
+  const Eigen::AlignedBox3d box(Eigen::Vector3d(-5.1, -5.1, -0.1), Eigen::Vector3d(5.1, 5.1, 10.1));
+  return judge_solid(s, box, member.test, tol, size, settings);
+}
+
+/// The right solid, from OCCT's primitives: inside the rim's cylinder, outside the ball below and
+/// inside the ball 5 higher (or below z = 5).
+TopoDS_Shape extruded_shell_solid() {
+  const TopoDS_Shape cylinder = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), 5, 10).Shape();
+  const TopoDS_Shape above = BRepAlgoAPI_Cut(cylinder, BRepPrimAPI_MakeSphere(gp_Pnt(0, 0, 0), 5).Shape()).Shape();
+  const TopoDS_Shape below = BRepAlgoAPI_Fuse(BRepPrimAPI_MakeBox(gp_Pnt(-6, -6, -1), 12, 12, 6).Shape(),
+                                              BRepPrimAPI_MakeSphere(gp_Pnt(0, 0, 5), 5).Shape())
+                                 .Shape();
+  return BRepAlgoAPI_Common(above, below).Shape();
+}
+
+}  // namespace
+
+TEST_CASE("Verdict: a surface under one joint is judged by trajectories, right and wrong solids", "[verdict]") {
+  const TopoDS_Shape right = extruded_shell_solid();
+  GProp_GProps g;
+  BRepGProp::VolumeProperties(right, g);
+  REQUIRE(g.Mass() == Approx(125 * M_PI).epsilon(1e-9));
+  const VerdictResult v = judge_extruded_shell(right);
+  INFO("mismatches " << v.mismatches << " probe mismatches " << v.probe_mismatches << ": " << v.first_mismatch);
+  CHECK(v.ok());
+  CHECK(v.undecided == 0);
+  CHECK(v.probes > Settings().verdict_probes / 2);
+  // a 10 degree wedge cut out
+  const TopoDS_Shape wedge =
+      BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, -1), gp_Dir(0, 0, 1), gp_Dir(1, 0, 0)), 6, 12, 10 * M_PI / 180).Shape();
+  CHECK_FALSE(judge_extruded_shell(BRepAlgoAPI_Cut(right, wedge).Shape()).ok());
+  // the rim's cylinder moved out by ten tolerances over part of its height
+  const TopoDS_Shape ring = BRepAlgoAPI_Cut(
+      BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, 1), gp_Dir(0, 0, 1)), 5 + 1e-4, 3).Shape(),
+      BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), 5, 5).Shape()).Shape();
+  const VerdictResult moved_out = judge_extruded_shell(BRepAlgoAPI_Fuse(right, ring).Shape());
+  CHECK_FALSE(moved_out.ok());
+  CHECK(moved_out.probe_mismatches > 0);
 }

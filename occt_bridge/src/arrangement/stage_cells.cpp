@@ -181,9 +181,9 @@ PointTestMaker orbit_membership(const OrbitSolidPtr& start, const ScrewJoint& j,
   };
 }
 
-PointTestMaker trajectory_membership(const TopoDS_Shape& body, const ScrewJoint& j, double T, double ttol) {
-  return [body, j, T, ttol]() -> PointTest {
-    auto test = std::make_shared<TrajectoryMembership>(body, true, j, T, ttol);
+PointTestMaker trajectory_membership(const TopoDS_Shape& body, const ScrewJoint& j, double T, double ttol, bool solid) {
+  return [body, j, T, ttol, solid]() -> PointTest {
+    auto test = std::make_shared<TrajectoryMembership>(body, solid, j, T, ttol);
     return [test](const Eigen::Vector3d& x) { return (*test)(x); };
   };
 }

@@ -124,8 +124,10 @@ PointTest stage_trajectory_membership(const StageInput& in, double tol_factor);
 /// orbit intervals: one test per thread.
 PointTestMaker orbit_membership(const OrbitSolidPtr& start, const ScrewJoint& j, double T);
 /// Membership in the sweep of a solid (at its start pose) by joint j over [0, T], from each
-/// point's trajectory against the solid's faces: one test per thread.
-PointTestMaker trajectory_membership(const TopoDS_Shape& body, const ScrewJoint& j, double T, double ttol);
+/// point's trajectory against the solid's faces: one test per thread. `solid` false: the body is
+/// faces only (a surface), and a point is swept when its trajectory meets one.
+PointTestMaker trajectory_membership(const TopoDS_Shape& body, const ScrewJoint& j, double T, double ttol,
+                                     bool solid = true);
 
 /// Leaves out candidates that are the same face reached twice (e.g. by symmetric edges).
 void drop_duplicate_candidates(Candidates& cand, double size);

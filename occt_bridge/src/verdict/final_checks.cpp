@@ -29,11 +29,13 @@ IndependentMembership independent_membership(const RunEntity& run_entity, const 
     return {always_decided(orbit_membership(start, j, j.hi - j.lo)), "orbit intervals of the entity",
             [start, j](double rel_tol, double* error) { return joint_sweep_volume(*start, j, j.hi - j.lo, rel_tol, error); }};
   }
-  if (n == 1 && entity.dimension() == 3 && !sd) {
+  // a solid with no distance bound (a B-rep), or a surface: by the trajectories against its faces
+  if (n == 1 && ((entity.dimension() == 3 && !sd) || entity.dimension() == 2)) {
     const ScrewJoint j = clipped.joints[0];
     const TopoDS_Shape body = moved(moved(raw, clipped.home), j.transform(j.lo));
-    return {always_decided(trajectory_membership(body, j, j.hi - j.lo, Settings::resolution * size)),
-            "trajectories against the entity's faces", {}};
+    const bool solid = entity.dimension() == 3;
+    return {always_decided(trajectory_membership(body, j, j.hi - j.lo, Settings::resolution * size, solid)),
+            solid ? "trajectories against the entity's faces" : "trajectories against the surface", {}};
   }
   if (sd) {
     return {[sd, clipped, size, budget]() -> MemberTest {
