@@ -382,18 +382,46 @@ TopoDS_Shape merged_analytic_faces(const TopoDS_Shape& solid) {
   return solid;
 }
 
-}  // namespace
+/// A step of the sweep boundary that cannot go on, and why.
+struct BoundaryFailure {
+  std::string why;
+};
 
-BoundarySweep boundary_sweep(const TopoDS_Shape& body, const ScrewJoint& j, double T, const PointTestMaker& member,
-                             double size, double tol, const Settings& settings, int stage, int joint_no) {
-  BoundarySweep out;
-  const auto t0 = Clock::now();
-  const double fit_tol = settings.fit_fraction * tol;
-  const bool full_turn = j.type == JointType::Revolute && T >= 2 * M_PI - 1e-12;
-  const std::string qn = "q" + std::to_string(joint_no);
-  auto variety = [&](const std::string& type, const std::string& what, nlohmann::json fixed, nlohmann::json free) {
+/// What the steps of the sweep boundary share: the joint and its range, the model size, the
+/// tolerances (eps: two points closer are one; boundary_tol: how far a section may lie from a
+/// face's boundary and still run along it), the settings, and the result they fill in.
+struct BoundaryContext {
+  const ScrewJoint& j;
+  double T, size, tol, fit_tol, eps;
+  const Settings& settings;
+  int stage, joint_no;
+  BoundarySweep& out;
+  double boundary_tol = 0;
+  int variety(const std::string& type, const std::string& what, nlohmann::json fixed, nlohmann::json free) {
     out.varieties.push_back({stage, joint_no, type, what, std::move(fixed), std::move(free)});
     return int(out.varieties.size()) - 1;
+  }
+};
+
+/// A candidate face split where others cross it, with its variety and the sheet it lies on.
+struct Piece {
+  TopoDS_Face face;
+  int variety;
+  Handle(Geom_Surface) sheet;
+};
+
+/// Steps 1 and 2: the body's faces split at their grazing curves and copied to both ends of the
+/// range where they bound the swept region, and the sweeps of the silhouette's edges.
+std::vector<Candidate> candidates_of(const TopoDS_Shape& body, BoundaryContext& c) {
+  const ScrewJoint& j = c.j;
+  const double T = c.T, size = c.size, fit_tol = c.fit_tol;
+  const Settings& settings = c.settings;
+  BoundarySweep& out = c.out;
+  const bool full_turn = j.type == JointType::Revolute && T >= 2 * M_PI - 1e-12;
+  const int joint_no = c.joint_no;
+  const std::string qn = "q" + std::to_string(joint_no);
+  const auto variety = [&c](const std::string& type, const std::string& what, nlohmann::json fixed, nlohmann::json free) {
+    return c.variety(type, what, std::move(fixed), std::move(free));
   };
   const nlohmann::json qfree = {{qn, {0.0, T}}};
   const int start_id = variety("limit", "the entity at the start of joint " + std::to_string(joint_no) + "'s range",
@@ -412,8 +440,7 @@ BoundarySweep boundary_sweep(const TopoDS_Shape& body, const ScrewJoint& j, doub
   for (int k = 1; k <= pieces.Extent(); ++k) {
     face_facing[k] = facing_of(TopoDS::Face(pieces(k)), j, size);
     if (face_facing[k] == Facing::Mixed) {
-      out.failure = "a face of the body could not be split where the motion becomes tangent to it";
-      return out;
+      throw BoundaryFailure{"a face of the body could not be split where the motion becomes tangent to it"};
     }
   }
 
@@ -497,13 +524,19 @@ BoundarySweep boundary_sweep(const TopoDS_Shape& body, const ScrewJoint& j, doub
       touching = std::make_shared<const TouchingSweep>(TouchingSweep{c, f, l, j, T, BRep_Tool::Surface(TopoDS::Face(fl.First()), l1)});
     for (const auto& face : sw) cands.push_back({face, vid, Candidate::Kind::Swept, {}, -1, touching, {}, -1});
   }
-  out.seconds["candidates"] = since(t0);
+  return cands;
+}
 
+/// Step 3: candidates on one analytic surface replaced by their arrangement; sets c.boundary_tol.
+void group_by_surface(std::vector<Candidate>& cands, BoundaryContext& c) {
+  const ScrewJoint& j = c.j;
+  const double eps = c.eps;
+  const Settings& settings = c.settings;
+  BoundarySweep& out = c.out;
   // 3. Candidates on one analytic surface (regions swept within a surface, sweeps of curves that
   //    revolve into one surface) overlap: each such group is replaced by its arrangement, whose
   //    faces do not overlap.
   const auto t_groups = Clock::now();
-  const double eps = Settings::resolution * size;
   {
     const std::size_t n = cands.size();
     std::vector<int> parent(n);
@@ -531,8 +564,7 @@ BoundarySweep boundary_sweep(const TopoDS_Shape& body, const ScrewJoint& j, doub
       gf.Build(stop_range());
       check_stop();
       if (!gf.IsDone() || gf.HasErrors()) {
-        out.failure = "the arrangement of candidate faces on one surface failed";
-        return out;
+        throw BoundaryFailure{"the arrangement of candidate faces on one surface failed"};
       }
       TopTools_IndexedMapOfShape faces;
       TopExp::MapShapes(gf.Shape(), TopAbs_FACE, faces);
@@ -565,11 +597,27 @@ BoundarySweep boundary_sweep(const TopoDS_Shape& body, const ScrewJoint& j, doub
     }
     cands.swap(merged);
   }
-  const double boundary_tol = std::max(100 * eps, 10 * out.fit_error);
-  if (settings.orbit_sections) cands = cut_where_through_itself(cands, j, eps, boundary_tol);
+  c.boundary_tol = std::max(100 * eps, 10 * out.fit_error);
+  if (settings.orbit_sections) cands = cut_where_through_itself(cands, j, eps, c.boundary_tol);
   out.candidates = int(cands.size());
   out.seconds["groups"] = since(t_groups);
 
+}
+
+/// The curves along which candidates cross: per candidate, the edges that split it, and every
+/// edge found (for diagnostics).
+struct Crossings {
+  std::vector<std::vector<TopoDS_Edge>> tools;
+  std::vector<std::vector<TopoDS_Edge>> pair_edges;
+};
+
+/// Step 4: where candidates cross.
+Crossings crossings_of(const std::vector<Candidate>& cands, BoundaryContext& c) {
+  const ScrewJoint& j = c.j;
+  const double size = c.size, tol = c.tol, fit_tol = c.fit_tol, eps = c.eps;
+  const Settings& settings = c.settings;
+  BoundarySweep& out = c.out;
+  const double boundary_tol = c.boundary_tol;
   // 4. Where candidates cross: the section of every pair whose boxes meet (the start copies among
   //    themselves and the end copies among themselves are faces of one solid and do not cross, nor
   //    do the faces of one group's arrangement).
@@ -665,8 +713,7 @@ BoundarySweep boundary_sweep(const TopoDS_Shape& body, const ScrewJoint& j, doub
   });
   for (std::size_t k = 0; k < pairs.size(); ++k)
     if (pair_failed[k]) {
-      out.failure = "the intersection of two candidate faces failed";
-      return out;
+      throw BoundaryFailure{"the intersection of two candidate faces failed"};
     }
   for (double err : pair_refit_error) out.fit_error = std::max(out.fit_error, err);
   std::vector<std::vector<TopoDS_Edge>> tools(n);
@@ -677,6 +724,15 @@ BoundarySweep boundary_sweep(const TopoDS_Shape& body, const ScrewJoint& j, doub
     }
   out.seconds["sections"] = since(t_sec);
 
+  return {std::move(tools), std::move(pair_edges)};
+}
+
+/// Step 5: each candidate split by the curves that cross it.
+std::vector<Piece> split_candidates(const std::vector<Candidate>& cands,
+                                    const std::vector<std::vector<TopoDS_Edge>>& tools, BoundaryContext& c) {
+  const double eps = c.eps;
+  BoundarySweep& out = c.out;
+  const std::size_t n = cands.size();
   // 5. Each candidate split by its curves; each piece kept when exactly one side is in the set.
   const auto t_split = Clock::now();
   std::vector<std::vector<TopoDS_Face>> split_faces(n);
@@ -702,20 +758,23 @@ BoundarySweep boundary_sweep(const TopoDS_Shape& body, const ScrewJoint& j, doub
   });
   for (std::size_t i = 0; i < n; ++i)
     if (split_failed[i]) {
-      out.failure = "a candidate face could not be split where others cross it";
-      return out;
+      throw BoundaryFailure{"a candidate face could not be split where others cross it"};
     }
-  struct Piece {
-    TopoDS_Face face;
-    int variety;
-    Handle(Geom_Surface) sheet;
-  };
   std::vector<Piece> all;
   for (std::size_t i = 0; i < n; ++i)
     for (const auto& f : split_faces[i]) all.push_back({f, cands[i].variety, cands[i].sheet});
   out.pieces = int(all.size());
   out.seconds["splitting"] = since(t_split);
 
+  return all;
+}
+
+/// Each piece: 1 kept as it is, -1 kept reversed, 0 dropped (exactly one side in the swept set
+/// keeps it); a piece that no sample decides fails the boundary.
+std::vector<int> classify_pieces(const std::vector<Piece>& all, const PointTestMaker& member, BoundaryContext& c) {
+  const double size = c.size;
+  const Settings& settings = c.settings;
+  BoundarySweep& out = c.out;
   const auto t_cls = Clock::now();
   const double delta = settings.classify_offset * size;
   // 1 keep as is, -1 keep reversed, 0 drop, 2 undecided
@@ -742,32 +801,40 @@ BoundarySweep boundary_sweep(const TopoDS_Shape& body, const ScrewJoint& j, doub
   out.seconds["classification"] = since(t_cls);
   for (std::size_t i = 0; i < all.size(); ++i)
     if (keep[i] == 2) {
-      out.failure = "a piece of the boundary could not be classified (it is thinner than the classification offset)";
-      return out;
+      throw BoundaryFailure{"a piece of the boundary could not be classified (it is thinner than the classification offset)"};
     }
 
-  if (const char* dir = std::getenv("SWEEP_DUMP_BOUNDARY")) {  // diagnostics: candidates, pieces, kept pieces
-    auto dump = [&](const std::string& name, const std::function<bool(std::size_t)>& take, std::size_t count,
-                    const std::function<TopoDS_Shape(std::size_t)>& get) {
-      TopoDS_Compound comp;
-      BRep_Builder bb;
-      bb.MakeCompound(comp);
-      for (std::size_t i = 0; i < count; ++i)
-        if (take(i)) bb.Add(comp, get(i));
-      BRepTools::Write(comp, (std::string(dir) + "/" + name + ".brep").c_str());
-    };
-    dump("candidates", [](std::size_t) { return true; }, cands.size(), [&](std::size_t i) { return cands[i].face; });
-    dump("pieces", [](std::size_t) { return true; }, all.size(), [&](std::size_t i) { return all[i].face; });
-    dump("kept", [&](std::size_t i) { return keep[i] != 0; }, all.size(),
-         [&](std::size_t i) { return keep[i] < 0 ? all[i].face.Reversed() : TopoDS_Shape(all[i].face); });
-    TopoDS_Compound tl;
-    BRep_Builder bb;
-    bb.MakeCompound(tl);
-    for (const auto& es : pair_edges)
-      for (const auto& e : es) bb.Add(tl, e);
-    BRepTools::Write(tl, (std::string(dir) + "/sections.brep").c_str());
-  }
+  return keep;
+}
 
+/// Diagnostics (SWEEP_DUMP_BOUNDARY=dir): candidates, pieces, kept pieces and sections as BREP files.
+void dump_boundary(const char* dir, const std::vector<Candidate>& cands, const std::vector<Piece>& all,
+                   const std::vector<int>& keep, const std::vector<std::vector<TopoDS_Edge>>& pair_edges) {
+  auto dump = [&](const std::string& name, const std::function<bool(std::size_t)>& take, std::size_t count,
+                  const std::function<TopoDS_Shape(std::size_t)>& get) {
+    TopoDS_Compound comp;
+    BRep_Builder bb;
+    bb.MakeCompound(comp);
+    for (std::size_t i = 0; i < count; ++i)
+      if (take(i)) bb.Add(comp, get(i));
+    BRepTools::Write(comp, (std::string(dir) + "/" + name + ".brep").c_str());
+  };
+  dump("candidates", [](std::size_t) { return true; }, cands.size(), [&](std::size_t i) { return cands[i].face; });
+  dump("pieces", [](std::size_t) { return true; }, all.size(), [&](std::size_t i) { return all[i].face; });
+  dump("kept", [&](std::size_t i) { return keep[i] != 0; }, all.size(),
+       [&](std::size_t i) { return keep[i] < 0 ? all[i].face.Reversed() : TopoDS_Shape(all[i].face); });
+  TopoDS_Compound tl;
+  BRep_Builder bb;
+  bb.MakeCompound(tl);
+  for (const auto& es : pair_edges)
+    for (const auto& e : es) bb.Add(tl, e);
+  BRepTools::Write(tl, (std::string(dir) + "/sections.brep").c_str());
+}
+
+/// Step 6: the kept pieces, oriented outward, sewn into the solid (c.out.solid).
+void sew_kept(const std::vector<Piece>& all, const std::vector<int>& keep, BoundaryContext& c) {
+  const double size = c.size;
+  BoundarySweep& out = c.out;
   // 6. The kept pieces, oriented outward, sewn into a solid.
   const auto t_sew = Clock::now();
   BRepBuilderAPI_Sewing sewing(std::max(Settings::sewing_gap * size, 10 * out.fit_error));
@@ -783,8 +850,7 @@ BoundarySweep boundary_sweep(const TopoDS_Shape& body, const ScrewJoint& j, doub
   }
   out.kept = kept;
   if (kept == 0) {
-    out.failure = "no piece of the candidate boundary separates the swept set from its complement";
-    return out;
+    throw BoundaryFailure{"no piece of the candidate boundary separates the swept set from its complement"};
   }
   sewing.Perform(stop_range());
   check_stop();
@@ -796,14 +862,35 @@ BoundarySweep boundary_sweep(const TopoDS_Shape& body, const ScrewJoint& j, doub
     ++shells;
   }
   if (shells == 0) {
-    out.failure = "the kept pieces do not sew into a shell";
-    return out;
+    throw BoundaryFailure{"the kept pieces do not sew into a shell"};
   }
   ShapeFix_Solid fix;
   fix.Init(ms.Solid());
   fix.Perform();
   out.solid = merged_analytic_faces(fix.Solid());
   out.seconds["sewing"] = since(t_sew);
+}
+
+}  // namespace
+
+BoundarySweep boundary_sweep(const TopoDS_Shape& body, const ScrewJoint& j, double T, const PointTestMaker& member,
+                             double size, double tol, const Settings& settings, int stage, int joint_no) {
+  BoundarySweep out;
+  BoundaryContext c{j, T, size, tol, settings.fit_fraction * tol, Settings::resolution * size, settings, stage, joint_no,
+                    out};
+  try {
+    const auto t0 = Clock::now();
+    std::vector<Candidate> cands = candidates_of(body, c);
+    out.seconds["candidates"] = since(t0);
+    group_by_surface(cands, c);
+    const Crossings crossings = crossings_of(cands, c);
+    const std::vector<Piece> pieces = split_candidates(cands, crossings.tools, c);
+    const std::vector<int> keep = classify_pieces(pieces, member, c);
+    if (const char* dir = std::getenv("SWEEP_DUMP_BOUNDARY")) dump_boundary(dir, cands, pieces, keep, crossings.pair_edges);
+    sew_kept(pieces, keep, c);
+  } catch (const BoundaryFailure& f) {
+    out.failure = f.why;
+  }
   return out;
 }
 
