@@ -28,6 +28,7 @@
 #include <TopoDS.hxx>
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "base/internal.hpp"
 #include "sweep/contour.hpp"
@@ -153,6 +154,86 @@ Handle(Geom_BSplineCurve) fitted_curve(const Field& F, ShapeAnalysis_Surface& pr
 
 }  // namespace
 
+/// The roots of g along the face's real boundary edges (not seams, not degenerate): exact ends of
+/// the grazing chains that leave the face.
+std::vector<gp_Pnt> boundary_roots_of(const TopoDS_Face& face, Field& F) {
+  std::vector<gp_Pnt> boundary_roots;
+  for (TopExp_Explorer ex(face, TopAbs_EDGE); ex.More(); ex.Next()) {
+    TopoDS_Edge e = TopoDS::Edge(ex.Current());
+    if (BRep_Tool::Degenerated(e) || BRep_Tool::IsClosed(e, face)) continue;
+    double f, l;
+    Handle(Geom2d_Curve) pc = BRep_Tool::CurveOnSurface(e, face, f, l);
+    if (pc.IsNull()) continue;
+    const int n = 400;
+    double gprev = 0;
+    for (int k = 0; k <= n; ++k) {
+      gp_Pnt2d q = pc->Value(f + (l - f) * k / n);
+      UV cur(q.X(), q.Y());
+      double gc = F.g(cur);
+      if (k > 0 && (gc > 0) != (gprev > 0)) {
+        double s = root_in_unit(
+            [&](double t) {
+              gp_Pnt2d r = pc->Value(f + (l - f) * (k - 1 + t) / n);
+              return F.g(UV(r.X(), r.Y()));
+            },
+            gprev, gc);
+        gp_Pnt2d r = pc->Value(f + (l - f) * (k - 1 + s) / n);
+        boundary_roots.push_back(F.point(UV(r.X(), r.Y())));
+      }
+      gprev = gc;
+    }
+  }
+
+  return boundary_roots;
+}
+
+/// The points as an exact line or circle when they lie on one within etol (the grazing curves of
+/// planes, spheres, cylinders...: the points are roots of g to rounding, so three of them define
+/// the curve); none otherwise.
+std::optional<GrazingCurve> exact_line_or_circle(const std::vector<gp_Pnt>& q, double etol) {
+  auto all_within = [&](auto dist) {
+    for (const auto& p : q)
+      if (dist(p) > etol) return false;
+    return true;
+  };
+  const gp_Pnt a = q.front(), b = q.back();
+  if (a.Distance(b) > etol) {
+    gp_Lin lin(a, gp_Dir(gp_Vec(a, b)));
+    if (all_within([&](const gp_Pnt& p) { return lin.Distance(p); })) {
+      GrazingCurve gc;
+      gc.curve = new Geom_Line(lin);
+      gc.first = 0;
+      gc.last = a.Distance(b);
+      return gc;
+    }
+  }
+  gp_Pnt m1 = q[q.size() / 3], m2 = q[(2 * q.size()) / 3];
+  GC_MakeCircle mk(a, m1, m2);
+  if (q.size() >= 6 && mk.IsDone()) {
+    gp_Circ circ = mk.Value()->Circ();
+    if (all_within([&](const gp_Pnt& p) { return circ.Distance(p); })) {
+      // orient the circle so that its parameter follows the points
+      double f = ElCLib::Parameter(circ, a), t1 = ElCLib::Parameter(circ, m1);
+      if (std::remainder(t1 - f, 2 * M_PI) < 0) {
+        gp_Ax2 ax = circ.Position();
+        ax.SetDirection(ax.Direction().Reversed());
+        circ = gp_Circ(ax, circ.Radius());
+        f = ElCLib::Parameter(circ, a);
+      }
+      double l = ElCLib::Parameter(circ, b);
+      while (l <= f + 1e-12) l += 2 * M_PI;
+      while (l > f + 2 * M_PI + 1e-12) l -= 2 * M_PI;
+      if (a.Distance(b) <= etol) l = f + 2 * M_PI;
+      GrazingCurve gc;
+      gc.curve = new Geom_Circle(circ);
+      gc.first = f;
+      gc.last = l;
+      return gc;
+    }
+  }
+  return std::nullopt;
+}
+
 std::vector<GrazingCurve> grazing_curves(const TopoDS_Face& face, const ScrewJoint& joint, double tol,
                                          double size) {
   Field F(face, joint);
@@ -188,33 +269,8 @@ std::vector<GrazingCurve> grazing_curves(const TopoDS_Face& face, const ScrewJoi
   };
   auto state = [&](const UV& p) { return cls.Perform(gp_Pnt2d(wrap(p).x(), wrap(p).y())); };
 
-  // Roots of g along the real boundary edges (not seams, not degenerate): exact chain ends.
-  std::vector<gp_Pnt> boundary_roots;
-  for (TopExp_Explorer ex(face, TopAbs_EDGE); ex.More(); ex.Next()) {
-    TopoDS_Edge e = TopoDS::Edge(ex.Current());
-    if (BRep_Tool::Degenerated(e) || BRep_Tool::IsClosed(e, face)) continue;
-    double f, l;
-    Handle(Geom2d_Curve) pc = BRep_Tool::CurveOnSurface(e, face, f, l);
-    if (pc.IsNull()) continue;
-    const int n = 400;
-    double gprev = 0;
-    for (int k = 0; k <= n; ++k) {
-      gp_Pnt2d q = pc->Value(f + (l - f) * k / n);
-      UV cur(q.X(), q.Y());
-      double gc = F.g(cur);
-      if (k > 0 && (gc > 0) != (gprev > 0)) {
-        double s = root_in_unit(
-            [&](double t) {
-              gp_Pnt2d r = pc->Value(f + (l - f) * (k - 1 + t) / n);
-              return F.g(UV(r.X(), r.Y()));
-            },
-            gprev, gc);
-        gp_Pnt2d r = pc->Value(f + (l - f) * (k - 1 + s) / n);
-        boundary_roots.push_back(F.point(UV(r.X(), r.Y())));
-      }
-      gprev = gc;
-    }
-  }
+  // exact ends of the chains that leave the face
+  const std::vector<gp_Pnt> boundary_roots = boundary_roots_of(face, F);
 
   std::vector<GrazingCurve> out;
   for (auto& chain : chains) {
@@ -275,53 +331,9 @@ std::vector<GrazingCurve> grazing_curves(const TopoDS_Face& face, const ScrewJoi
       double len = 0;
       for (std::size_t k = 1; k < q.size(); ++k) len += q[k].Distance(q[k - 1]);
       if (len < 1e-7 * size) continue;
-      // Lines and circles (grazing curves of planes, spheres, cylinders...) are kept exact: the
-      // points are roots of g to rounding, so three of them define the curve.
-      {
-        const double etol = 1e-10 * size;
-        auto all_within = [&](auto dist) {
-          for (const auto& p : q)
-            if (dist(p) > etol) return false;
-          return true;
-        };
-        gp_Pnt a = q.front(), b = q.back(), m = q[q.size() / 2];
-        if (a.Distance(b) > etol) {
-          gp_Lin lin(a, gp_Dir(gp_Vec(a, b)));
-          if (all_within([&](const gp_Pnt& p) { return lin.Distance(p); })) {
-            GrazingCurve gc;
-            gc.curve = new Geom_Line(lin);
-            gc.first = 0;
-            gc.last = a.Distance(b);
-            out.push_back(gc);
-            continue;
-          }
-        }
-        gp_Pnt m1 = q[q.size() / 3], m2 = q[(2 * q.size()) / 3];
-        GC_MakeCircle mk(a, m1, m2);
-        if (q.size() >= 6 && mk.IsDone()) {
-          gp_Circ circ = mk.Value()->Circ();
-          if (all_within([&](const gp_Pnt& p) { return circ.Distance(p); })) {
-            // orient the circle so that its parameter follows the points
-            double f = ElCLib::Parameter(circ, a), t1 = ElCLib::Parameter(circ, m1);
-            if (std::remainder(t1 - f, 2 * M_PI) < 0) {
-              gp_Ax2 ax = circ.Position();
-              ax.SetDirection(ax.Direction().Reversed());
-              circ = gp_Circ(ax, circ.Radius());
-              f = ElCLib::Parameter(circ, a);
-            }
-            double l = ElCLib::Parameter(circ, b);
-            while (l <= f + 1e-12) l += 2 * M_PI;
-            while (l > f + 2 * M_PI + 1e-12) l -= 2 * M_PI;
-            if (a.Distance(b) <= etol) l = f + 2 * M_PI;
-            (void)m;
-            GrazingCurve gc;
-            gc.curve = new Geom_Circle(circ);
-            gc.first = f;
-            gc.last = l;
-            out.push_back(gc);
-            continue;
-          }
-        }
+      if (const auto exact = exact_line_or_circle(q, 1e-10 * size)) {
+        out.push_back(*exact);
+        continue;
       }
       double error = 0;
       const Handle(Geom_BSplineCurve) c = fitted_curve(F, projector, q, tol, &error);
