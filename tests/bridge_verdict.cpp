@@ -116,7 +116,7 @@ TEST_CASE("Verdict: the bound on the symmetric difference follows Wilson's inter
 namespace {
 
 /// A hemispherical shell of radius 5 (z >= 0) extruded 5 along z, judged by the membership the
-/// run takes for a surface under one joint (trajectories against the surface).
+/// run takes for a surface under one joint.
 VerdictResult judge_extruded_shell(const TopoDS_Shape& s) {
   const Spec spec = parse_spec(R"json({"sweep": 1, "entity": {"kind": "surface",
       "params": {"u": [0, 6.283185307179586], "v": [0, 1.5707963267948966]},
@@ -130,7 +130,6 @@ VerdictResult judge_extruded_shell(const TopoDS_Shape& s) {
   const TopoDS_Shape raw = entity_shape(spec.entity, 0.01 * tol, &fit_err);
   const IndependentMembership member = independent_membership(entity, spec.motion.motion, raw, size, settings);
   REQUIRE(member.test);
-  CHECK(member.name == "trajectories against the surface");
   const Eigen::AlignedBox3d box(Eigen::Vector3d(-5.1, -5.1, -0.1), Eigen::Vector3d(5.1, 5.1, 10.1));
   return judge_solid(s, box, member.test, tol, size, settings);
 }
@@ -148,7 +147,7 @@ TopoDS_Shape extruded_shell_solid() {
 
 }  // namespace
 
-TEST_CASE("Verdict: a surface under one joint is judged by trajectories, right and wrong solids", "[verdict]") {
+TEST_CASE("Verdict: a surface under one joint, its right solid and two wrong ones", "[verdict]") {
   const TopoDS_Shape right = extruded_shell_solid();
   GProp_GProps g;
   BRepGProp::VolumeProperties(right, g);
@@ -162,7 +161,8 @@ TEST_CASE("Verdict: a surface under one joint is judged by trajectories, right a
   const TopoDS_Shape wedge =
       BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, -1), gp_Dir(0, 0, 1), gp_Dir(1, 0, 0)), 6, 12, 10 * M_PI / 180).Shape();
   CHECK_FALSE(judge_extruded_shell(BRepAlgoAPI_Cut(right, wedge).Shape()).ok());
-  // the rim's cylinder moved out by ten tolerances over part of its height
+  // the rim's cylinder moved out by ten tolerances over part of its height (the search over joint and
+  // surface parameters alone left the probes there undecided and called this solid right)
   const TopoDS_Shape ring = BRepAlgoAPI_Cut(
       BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, 1), gp_Dir(0, 0, 1)), 5 + 1e-4, 3).Shape(),
       BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), 5, 5).Shape()).Shape();

@@ -336,6 +336,7 @@ TopoDS_Shape entity_shape(const EntitySpec& e, double tol, double* fit_error, co
     case EntityKind::Torus: {
       // placed already, on the exact surfaces of their core patches
       const EntityPtr built = core ? nullptr : make_entity(e);
+      if (!core && !built) throw InternalError(std::string("no core entity for a ") + to_string(e.kind));
       s = primitive_from_patches(core ? *core : *built);
       if (s.IsNull())
         throw ComputeError(std::string("the faces of the ") + to_string(e.kind) + " entity do not make a valid solid");

@@ -29,13 +29,31 @@ IndependentMembership independent_membership(const RunEntity& run_entity, const 
     return {always_decided(orbit_membership(start, j, j.hi - j.lo)), "orbit intervals of the entity",
             [start, j](double rel_tol, double* error) { return joint_sweep_volume(*start, j, j.hi - j.lo, rel_tol, error); }};
   }
-  // a solid with no distance bound (a B-rep), or a surface: by the trajectories against its faces
-  if (n == 1 && ((entity.dimension() == 3 && !sd) || entity.dimension() == 2)) {
+  if (n == 1 && entity.dimension() == 3 && !sd) {
     const ScrewJoint j = clipped.joints[0];
     const TopoDS_Shape body = moved(moved(raw, clipped.home), j.transform(j.lo));
-    const bool solid = entity.dimension() == 3;
-    return {always_decided(trajectory_membership(body, j, j.hi - j.lo, Settings::resolution * size, solid)),
-            solid ? "trajectories against the entity's faces" : "trajectories against the surface", {}};
+    return {always_decided(trajectory_membership(body, j, j.hi - j.lo, Settings::resolution * size)),
+            "trajectories against the entity's faces", {}};
+  }
+  if (n == 1 && entity.dimension() == 2 && pe) {
+    // A surface under one joint: a point whose trajectory meets the surface is swept; one whose
+    // trajectory misses it is asked of the search over joint and surface parameters, and is
+    // swept when that finds it so (a trajectory can miss the surface where it crosses it at a
+    // grazing angle), outside otherwise (the search alone leaves most points near the boundary
+    // undecided).
+    const ScrewJoint j = clipped.joints[0];
+    const TopoDS_Shape body = moved(moved(raw, clipped.home), j.transform(j.lo));
+    const PointTestMaker by_trajectory = trajectory_membership(body, j, j.hi - j.lo, Settings::resolution * size, false);
+    return {[by_trajectory, pe, clipped, size, budget]() -> MemberTest {
+              const PointTest meets = by_trajectory();
+              return [meets, pe, clipped, size, budget](const Eigen::Vector3d& x) {
+                if (meets(x)) return 1;
+                return swept_image_membership(*pe, clipped, x, Settings::resolution * size, size, budget, true, false) == 1
+                           ? 1
+                           : 0;
+              };
+            },
+            "trajectories against the surface, the search over joint and surface parameters where they miss it", {}};
   }
   if (sd) {
     return {[sd, clipped, size, budget]() -> MemberTest {
