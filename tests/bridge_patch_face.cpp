@@ -42,41 +42,50 @@ GeomAbs_SurfaceType occt_type(sweep::PatchForm::Kind k) {
   }
 }
 
+/// Placed primitives of random sizes (spheres, boxes, cylinders, cones with and without an apex,
+/// tori, elliptic cylinders plain and twisted) as entity JSON, each with its closed-form volume.
+std::vector<std::pair<std::string, double>> placed_primitives(std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0), size(0.3, 2.0);
+  const double r = size(rng), r2 = size(rng), h = size(rng), a = size(rng), b = size(rng), c = size(rng);
+  const double ax = u(rng), ay = u(rng), angle = 3 * u(rng), tx = u(rng), ty = u(rng);
+  const std::string pl = R"(, "placement": {"translate": [)" + num(tx) + ", " + num(ty) +
+                         R"(, 0.5], "rotate": {"axis": [)" + num(ax) + ", " + num(ay) + R"(, 1], "angle": )" +
+                         num(angle) + "}}";
+  const double big = std::max(r, r2), small = 0.45 * std::min(r, r2);
+  return {
+      {R"({"kind": "sphere", "center": [0.1, 0.2, 0.3], "radius": )" + num(r) + pl + "}", 4.0 / 3 * M_PI * r * r * r},
+      {R"({"kind": "box", "min": [0, 0, 0], "max": [)" + num(a) + ", " + num(b) + ", " + num(c) + "]" + pl + "}",
+       a * b * c},
+      {R"({"kind": "cylinder", "base": [0, 0, 0], "axis": [1, 1, 0.3], "radius": )" + num(r) + R"(, "height": )" +
+           num(h) + pl + "}",
+       M_PI * r * r * h},
+      {R"({"kind": "cone", "base": [0, 0, 0], "axis": [0.2, -1, 0.5], "radius1": )" + num(r) + R"(, "radius2": )" +
+           num(r2) + R"(, "height": )" + num(h) + pl + "}",
+       M_PI * h / 3 * (r * r + r * r2 + r2 * r2)},
+      {R"({"kind": "cone", "base": [0, 0, 0], "axis": [0, 0, 1], "radius1": )" + num(r) +
+           R"(, "radius2": 0, "height": )" + num(h) + pl + "}",
+       M_PI * h / 3 * r * r},
+      {R"({"kind": "cone", "base": [0, 0, 0], "axis": [0, 0, 1], "radius1": 0, "radius2": )" + num(r2) +
+           R"(, "height": )" + num(h) + pl + "}",
+       M_PI * h / 3 * r2 * r2},
+      {R"({"kind": "torus", "center": [0, 0, 0], "axis": [1, 0, 1], "major": )" + num(big) + R"(, "minor": )" +
+           num(small) + pl + "}",
+       2 * M_PI * M_PI * big * small * small},
+      {R"({"kind": "elliptic_cylinder", "base": [0, 0, 0], "axis": [0.3, 0.1, 1], "a": )" + num(a) + R"(, "b": )" +
+           num(b) + R"(, "height": )" + num(h) + pl + "}",
+       M_PI * a * b * h},
+      {R"({"kind": "elliptic_cylinder", "base": [0, 0, 0], "axis": [0, 0, 1], "a": )" + num(a) + R"(, "b": )" +
+           num(b) + R"(, "height": )" + num(h) + R"(, "twist": "1.2*u")" + pl + "}",
+       M_PI * a * b * h},
+  };
+}
+
 }  // namespace
 
 TEST_CASE("Patch faces: the faces of placed primitives sew into their solids") {
   std::mt19937_64 rng(4040);
-  std::uniform_real_distribution<double> u(-1.0, 1.0), size(0.3, 2.0);
   for (int round = 0; round < 3; ++round) {
-    const double r = size(rng), r2 = size(rng), h = size(rng), a = size(rng), b = size(rng), c = size(rng);
-    const double ax = u(rng), ay = u(rng), angle = 3 * u(rng), tx = u(rng), ty = u(rng);
-    const std::string pl = R"(, "placement": {"translate": [)" + num(tx) + ", " + num(ty) +
-                           R"(, 0.5], "rotate": {"axis": [)" + num(ax) + ", " + num(ay) + R"(, 1], "angle": )" +
-                           num(angle) + "}}";
-    const double big = std::max(r, r2), small = 0.45 * std::min(r, r2);
-    const std::vector<std::pair<std::string, double>> cases = {
-        {R"({"kind": "sphere", "center": [0.1, 0.2, 0.3], "radius": )" + num(r) + pl + "}", 4.0 / 3 * M_PI * r * r * r},
-        {R"({"kind": "box", "min": [0, 0, 0], "max": [)" + num(a) + ", " + num(b) + ", " + num(c) + "]" + pl + "}",
-         a * b * c},
-        {R"({"kind": "cylinder", "base": [0, 0, 0], "axis": [1, 1, 0.3], "radius": )" + num(r) + R"(, "height": )" +
-             num(h) + pl + "}",
-         M_PI * r * r * h},
-        {R"({"kind": "cone", "base": [0, 0, 0], "axis": [0.2, -1, 0.5], "radius1": )" + num(r) + R"(, "radius2": )" +
-             num(r2) + R"(, "height": )" + num(h) + pl + "}",
-         M_PI * h / 3 * (r * r + r * r2 + r2 * r2)},
-        {R"({"kind": "cone", "base": [0, 0, 0], "axis": [0, 0, 1], "radius1": )" + num(r) +
-             R"(, "radius2": 0, "height": )" + num(h) + pl + "}",
-         M_PI * h / 3 * r * r},
-        {R"({"kind": "torus", "center": [0, 0, 0], "axis": [1, 0, 1], "major": )" + num(big) + R"(, "minor": )" +
-             num(small) + pl + "}",
-         2 * M_PI * M_PI * big * small * small},
-        {R"({"kind": "elliptic_cylinder", "base": [0, 0, 0], "axis": [0.3, 0.1, 1], "a": )" + num(a) + R"(, "b": )" +
-             num(b) + R"(, "height": )" + num(h) + pl + "}",
-         M_PI * a * b * h},
-        {R"({"kind": "elliptic_cylinder", "base": [0, 0, 0], "axis": [0, 0, 1], "a": )" + num(a) + R"(, "b": )" +
-             num(b) + R"(, "height": )" + num(h) + R"(, "twist": "1.2*u")" + pl + "}",
-         M_PI * a * b * h},
-    };
+    const auto cases = placed_primitives(rng);
     for (const auto& [json, volume] : cases) {
       INFO(json);
       const sweep::EntityPtr e = entity_of(json);
@@ -111,36 +120,18 @@ TEST_CASE("Patch faces: the faces of placed primitives sew into their solids") {
 
 TEST_CASE("Patch faces: primitives as the solids of their patch faces") {
   std::mt19937_64 rng(4041);
-  std::uniform_real_distribution<double> u(-1.0, 1.0), size(0.3, 2.0);
   for (int round = 0; round < 3; ++round) {
-    const double r = size(rng), r2 = size(rng), h = size(rng), a = size(rng), b = size(rng), c = size(rng);
-    const std::string pl = R"(, "placement": {"translate": [)" + num(u(rng)) + ", " + num(u(rng)) +
-                           R"(, 0.5], "rotate": {"axis": [)" + num(u(rng)) + ", " + num(u(rng)) + R"(, 1], "angle": )" +
-                           num(3 * u(rng)) + "}}";
-    const double big = std::max(r, r2), small = 0.45 * std::min(r, r2);
-    const std::vector<std::pair<std::string, double>> cases = {
-        {R"({"kind": "sphere", "center": [0.1, 0.2, 0.3], "radius": )" + num(r) + pl + "}", 4.0 / 3 * M_PI * r * r * r},
-        {R"({"kind": "box", "min": [0, 0, 0], "max": [)" + num(a) + ", " + num(b) + ", " + num(c) + "]" + pl + "}",
-         a * b * c},
-        {R"({"kind": "cylinder", "base": [0, 0, 0], "axis": [1, 1, 0.3], "radius": )" + num(r) + R"(, "height": )" +
-             num(h) + pl + "}",
-         M_PI * r * r * h},
-        {R"({"kind": "cone", "base": [0, 0, 0], "axis": [0.2, -1, 0.5], "radius1": )" + num(r) + R"(, "radius2": )" +
-             num(r2) + R"(, "height": )" + num(h) + pl + "}",
-         M_PI * h / 3 * (r * r + r * r2 + r2 * r2)},
-        {R"({"kind": "cone", "base": [0, 0, 0], "axis": [0, 0, 1], "radius1": 0, "radius2": )" + num(r2) +
-             R"(, "height": )" + num(h) + pl + "}",
-         M_PI * h / 3 * r2 * r2},
-        {R"({"kind": "torus", "center": [0, 0, 0], "axis": [1, 0, 1], "major": )" + num(big) + R"(, "minor": )" +
-             num(small) + pl + "}",
-         2 * M_PI * M_PI * big * small * small},
-    };
+    const auto cases = placed_primitives(rng);
     for (const auto& [json, volume] : cases) {
       INFO(json);
       const std::string text = R"({"sweep": 1, "entity": )" + json +
                                R"(, "motion": {"kind": "axes", "joints": [{"type": "prismatic", "direction": [0, 0, 1],
                                   "range": [0, 1]}]}})";
       const TopoDS_Shape solid = sweep::occt::primitive_from_patches(*sweep::make_entity(sweep::parse_spec(text, "").entity));
+      if (json.find("elliptic_cylinder") != std::string::npos) {
+        CHECK(solid.IsNull());  // its lateral face has no closed form: not made here
+        continue;
+      }
       REQUIRE_FALSE(solid.IsNull());
       CHECK(solid.ShapeType() == TopAbs_SOLID);
       CHECK(BRepCheck_Analyzer(solid).IsValid());
@@ -149,9 +140,4 @@ TEST_CASE("Patch faces: primitives as the solids of their patch faces") {
       CHECK(std::abs(g.Mass() - volume) <= 1e-9 * volume);
     }
   }
-  // an elliptic cylinder's lateral face has no closed form: not made here
-  const std::string ell = R"({"sweep": 1, "entity": {"kind": "elliptic_cylinder", "base": [0, 0, 0], "axis": [0, 0, 1],
-      "a": 1, "b": 0.5, "height": 1}, "motion": {"kind": "axes", "joints": [{"type": "prismatic", "direction": [0, 0, 1],
-      "range": [0, 1]}]}})";
-  CHECK(sweep::occt::primitive_from_patches(*sweep::make_entity(sweep::parse_spec(ell, "").entity)).IsNull());
 }
