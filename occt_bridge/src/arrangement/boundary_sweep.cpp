@@ -412,23 +412,21 @@ struct Piece {
 
 /// Steps 1 and 2: the body's faces split at their grazing curves and copied to both ends of the
 /// range where they bound the swept region, and the sweeps of the silhouette's edges.
-std::vector<Candidate> candidates_of(const TopoDS_Shape& body, BoundaryContext& c) {
-  const ScrewJoint& j = c.j;
-  const double T = c.T, size = c.size, fit_tol = c.fit_tol;
-  const Settings& settings = c.settings;
-  BoundarySweep& out = c.out;
+std::vector<Candidate> candidates_of(const TopoDS_Shape& body, BoundaryContext& ctx) {
+  const ScrewJoint& j = ctx.j;
+  const double T = ctx.T, size = ctx.size, fit_tol = ctx.fit_tol;
+  const Settings& settings = ctx.settings;
+  BoundarySweep& out = ctx.out;
   const bool full_turn = j.type == JointType::Revolute && T >= 2 * M_PI - 1e-12;
-  const int joint_no = c.joint_no;
+  const int joint_no = ctx.joint_no;
   const std::string qn = "q" + std::to_string(joint_no);
-  const auto variety = [&c](const std::string& type, const std::string& what, nlohmann::json fixed, nlohmann::json free) {
-    return c.variety(type, what, std::move(fixed), std::move(free));
-  };
   const nlohmann::json qfree = {{qn, {0.0, T}}};
-  const int start_id = variety("limit", "the entity at the start of joint " + std::to_string(joint_no) + "'s range",
-                               {{qn, 0.0}}, nlohmann::json::object());
-  const int end_id = full_turn ? -1
-                               : variety("limit", "the entity at the end of joint " + std::to_string(joint_no) + "'s range",
-                                         {{qn, T}}, nlohmann::json::object());
+  const int start_id = ctx.variety("limit", "the entity at the start of joint " + std::to_string(joint_no) + "'s range",
+                                   {{qn, 0.0}}, nlohmann::json::object());
+  const int end_id =
+      full_turn ? -1
+                : ctx.variety("limit", "the entity at the end of joint " + std::to_string(joint_no) + "'s range",
+                              {{qn, T}}, nlohmann::json::object());
 
   // 1. The body's faces split at their grazing curves, each piece facing one way. Closed faces are
   //    halved first, so that every edge has two faces (a seam can be a silhouette).
@@ -512,10 +510,10 @@ std::vector<Candidate> candidates_of(const TopoDS_Shape& body, BoundaryContext& 
     TopLoc_Location l1, l2;
     const bool is_grazing = sides.size() == 2 && BRep_Tool::Surface(TopoDS::Face(fl.First()), l1) ==
                                                      BRep_Tool::Surface(TopoDS::Face(fl.Last()), l2);
-    const int vid = variety(is_grazing ? "interior" : "boundary",
-                            std::string(is_grazing ? "grazing curve (n . v = 0)" : "edge") + " " + std::to_string(++edge_no) +
-                                " swept by joint " + std::to_string(joint_no),
-                            nlohmann::json::object(), efree);
+    const int vid = ctx.variety(is_grazing ? "interior" : "boundary",
+                                std::string(is_grazing ? "grazing curve (n . v = 0)" : "edge") + " " +
+                                    std::to_string(++edge_no) + " swept by joint " + std::to_string(joint_no),
+                                nlohmann::json::object(), efree);
     std::shared_ptr<const TouchingSweep> touching;
     // (the faces of a helical sweep are fitted: a crossing traced on the exact sweep would lie off
     // them by their fit error, so OCCT intersects those)

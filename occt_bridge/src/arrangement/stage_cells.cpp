@@ -192,7 +192,7 @@ PointTest stage_membership(const StageInput& in) {
   if (in.sd) return [in](const Eigen::Vector3d& x) { return in_swept_set(*in.sd, in.sd_motion, x, Settings::resolution * in.size); };
   if (in.pe)
     return [in](const Eigen::Vector3d& x) { return in_swept_image(*in.pe, in.sd_motion, x, Settings::resolution * in.size, in.size); };
-  return stage_trajectory_membership(in, 1e-9);
+  return stage_trajectory_membership(in, Settings::resolution);
 }
 
 namespace {

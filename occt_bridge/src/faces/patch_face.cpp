@@ -186,7 +186,8 @@ PatchFace patch_face(const Patch& p, double tol) {
     const Handle(Geom_Surface) surface = form_surface(p.form());
     if (!surface.IsNull() && p.form().surface_parameters) {
       const double scale = p.form().kind == PatchForm::Kind::Cone ? 1 / std::cos(p.form().semi_angle) : 1.0;
-      BRepBuilderAPI_MakeFace mf(surface, p.lo(0), p.hi(0), scale * p.lo(1), scale * p.hi(1), tol);  // (an iso shorter than tol: a pole)
+      // (an iso shorter than tol is a pole: a degenerate edge)
+      BRepBuilderAPI_MakeFace mf(surface, p.lo(0), p.hi(0), scale * p.lo(1), scale * p.hi(1), tol);
       if (mf.IsDone()) {
         out.face = mf.Face();
         out.error = measured_error(p, out.face, true);

@@ -98,8 +98,10 @@ struct IndependentMembership {
   std::function<double(double rel_tol, double* error)> volume;
 };
 /// The entity's orbit intervals for a primitive under one joint, the trajectory's intersections
-/// with the entity's own faces for other solids under one joint, the certified search over the
-/// joint box for primitives under chains and for points, curves and surfaces. `clipped`: the
+/// with the entity's own faces for other solids under one joint, for a surface under one joint its
+/// trajectory against the surface and the parameter search where that misses it (decision 0023),
+/// the certified search over the joint box for primitives under chains and for points, curves and
+/// surfaces otherwise. `clipped`: the
 /// motion with no revolute joint beyond a whole turn; `raw`: the entity before the motion's home.
 IndependentMembership independent_membership(const RunEntity& entity, const Motion& clipped, const TopoDS_Shape& raw,
                                              double size, const Settings& settings);

@@ -125,8 +125,8 @@ std::vector<TopoDS_Face> planar_curve_sweep(const Handle(Geom_Curve)& c, double 
     const TopoDS_Face& f = TopoDS::Face(ex.Current());
     double u0, u1, v0, v1;
     BRepTools::UVBounds(f, u0, u1, v0, v1);
-    if (u0 < cu - half + Settings::resolution * size || u1 > cu + half - Settings::resolution * size || v0 < cv - half + Settings::resolution * size ||
-        v1 > cv + half - Settings::resolution * size)
+    const double margin = Settings::resolution * size;
+    if (u0 < cu - half + margin || u1 > cu + half - margin || v0 < cv - half + margin || v1 > cv + half - margin)
       continue;  // touches the outer square: outside
     BRepTopAdaptor_FClass2d fc(f, 1e-9);
     BRepAdaptor_Surface S(f);
