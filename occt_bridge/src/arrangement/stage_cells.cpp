@@ -198,7 +198,7 @@ PointTest stage_membership(const StageInput& in) {
 namespace {
 
 /// The cells of the arrangement in the swept set.
-std::vector<TopoDS_Solid> swept_cells(const StageInput& in, const BOPAlgo_MakerVolume& mv, Report& rep) {
+std::vector<TopoDS_Solid> swept_cells(const StageInput& in, const BOPAlgo_MakerVolume& mv, StageRecord& record) {
   const auto member = stage_membership(in);
   const double size = in.size;
   std::vector<TopoDS_Solid> kept;
@@ -216,7 +216,7 @@ std::vector<TopoDS_Solid> swept_cells(const StageInput& in, const BOPAlgo_MakerV
     }
     if (member(p)) kept.push_back(cell);
   }
-  rep.cells += ncells;
+  record.cells += ncells;
   if (kept.empty()) throw ComputeError("no cell of the arrangement is in the swept set");
   return kept;
 }
@@ -280,8 +280,8 @@ std::vector<TopoDS_Face> split_faces_of(const BOPAlgo_MakerVolume& mv, const std
 }  // namespace
 
 TopoDS_Shape stage_cells_solid(const StageInput& in, double fit_err, Candidates& cand, DroppedFaces& dropped,
-                               Report& rep) {
-  Seconds sec{rep.seconds};
+                               StageRecord& record) {
+  Seconds sec{record.seconds};
   // OCCT's cell builder can leave shells it cannot orient and lose the cells they bound, or build
   // no cell at all, or fail after splitting the faces: then the solid is built from the split faces
   // that separate the swept set from its complement, each classified by the membership of points
@@ -311,7 +311,7 @@ TopoDS_Shape stage_cells_solid(const StageInput& in, double fit_err, Candidates&
       const TopoDS_Shape bounded =
           solid_from_boundary_faces(split_faces_of(mv, cand.faces), member, in.size, nullptr, &free_edges);
       if (valid_and_closed(bounded)) {
-        for (TopExp_Explorer ex(bounded, TopAbs_SOLID); ex.More(); ex.Next()) ++rep.cells;
+        for (TopExp_Explorer ex(bounded, TopAbs_SOLID); ex.More(); ex.Next()) ++record.cells;
         result = bounded;
       }
     }
@@ -322,12 +322,12 @@ TopoDS_Shape stage_cells_solid(const StageInput& in, double fit_err, Candidates&
                              : 0;
     sec["classification"] += since(t_bnd);
     if (restored == 0) break;
-    rep.restored_candidates.push_back({in.stage, restored});
+    record.restored.push_back(restored);
   }
   if (result.IsNull() && !arrangement_error.empty()) throw ComputeError(arrangement_error);
   // Otherwise: classify the cells.
   const auto t_cls = Clock::now();
-  const std::vector<TopoDS_Solid> kept = result.IsNull() ? swept_cells(in, mv, rep) : std::vector<TopoDS_Solid>();
+  const std::vector<TopoDS_Solid> kept = result.IsNull() ? swept_cells(in, mv, record) : std::vector<TopoDS_Solid>();
   sec["classification"] += since(t_cls);
   const auto t_build = Clock::now();
   if (result.IsNull()) result = union_of_cells(kept);
@@ -338,23 +338,23 @@ TopoDS_Shape stage_cells_solid(const StageInput& in, double fit_err, Candidates&
   return result;
 }
 
-TopoDS_Shape solid_sweep(const StageInput& in, double& fit_err, Report& rep, Candidates* cand_out, bool prune,
+TopoDS_Shape solid_sweep(const StageInput& in, double& fit_err, StageRecord& record, Candidates* cand_out, bool prune,
                          PruneCount* pruned, bool direct_builds) {
-  Seconds sec{rep.seconds};
+  Seconds sec{record.seconds};
   const auto t_cand = Clock::now();
   Candidates cand;
   if (direct_builds) {
     const TopoDS_Shape direct = direct_stage(in, fit_err, cand);
     if (!direct.IsNull()) {
-      rep.varieties += cand.varieties;
-      rep.cells += 1;
+      record.varieties += cand.varieties;
+      record.cells += 1;
       sec["varieties"] += since(t_cand);
       if (cand_out) *cand_out = std::move(cand);
       return direct;
     }
   }
   const LimitIds limits = stage_candidates(in, fit_err, cand);
-  rep.varieties += cand.varieties;
+  record.varieties += cand.varieties;
   sec["varieties"] += since(t_cand);
   // Duplicates first, so that a candidate restored after pruning cannot duplicate one kept: the
   // general fuse handles coincident analytic faces, but not coincident general ones.
@@ -371,7 +371,7 @@ TopoDS_Shape solid_sweep(const StageInput& in, double& fit_err, Report& rep, Can
     sec["pruning"] += since(t_prune);
     if (pruned) pruned->dropped = int(dropped.faces.size());
   }
-  TopoDS_Shape result = stage_cells_solid(in, fit_err, cand, dropped, rep);
+  TopoDS_Shape result = stage_cells_solid(in, fit_err, cand, dropped, record);
   if (cand_out) *cand_out = std::move(cand);
   return result;
 }

@@ -29,6 +29,19 @@ struct Seconds {
   }
 };
 
+/// What one solid stage did, for the report (write_run_record puts it there): the varieties and
+/// cells it made, candidates it restored (one count per round), whether it was built from the
+/// arrangement of cells, built again from every candidate, or healed, and its seconds per step.
+struct StageRecord {
+  int stage = 0;
+  int varieties = 0, cells = 0;
+  std::vector<int> restored;
+  bool from_cells = false, unpruned = false, healed = false;
+  nlohmann::json seconds = nlohmann::json::object();
+  /// Adds `s` seconds to step `key`.
+  void add_seconds(const std::string& key, double s) { seconds[key] = seconds.value(key, 0.0) + s; }
+};
+
 /// Candidate faces left out of the arrangement, with their varieties.
 struct DroppedFaces {
   std::vector<TopoDS_Face> faces;
@@ -140,12 +153,12 @@ int restore_near_edges(const std::vector<TopoDS_Edge>& edges, double size, Dropp
 /// The solid bounded by the arrangement of the candidates: its cells in the swept set, or the split
 /// faces that separate the set from its complement. Throws ComputeError when neither can be built.
 TopoDS_Shape stage_cells_solid(const StageInput& in, double fit_err, Candidates& cand, DroppedFaces& dropped,
-                               Report& rep);
+                               StageRecord& record);
 
 /// One stage: candidate varieties, pruning (with `prune`; `pruned` receives how many of how
 /// many), the arrangement and its cells. With `direct_builds`, the shapes that have a direct
-/// construction are built so first. The stage's candidates go to `cand_out`.
-TopoDS_Shape solid_sweep(const StageInput& in, double& fit_err, Report& rep, Candidates* cand_out, bool prune,
+/// construction are built so first. The stage's candidates go to `cand_out`, what it did to `record`.
+TopoDS_Shape solid_sweep(const StageInput& in, double& fit_err, StageRecord& record, Candidates* cand_out, bool prune,
                          PruneCount* pruned, bool direct_builds);
 
 }  // namespace sweep::occt

@@ -28,14 +28,14 @@ namespace {
 /// builds it (then the cells do). `orbit_entity`: the entity's orbit solid (null when it has none);
 /// `G`: the entity's placement before the stage.
 TopoDS_Shape entity_stage(const StageInput& in, const OrbitSolidPtr& orbit_entity, const Eigen::Isometry3d& G,
-                          const RunOptions& opt, double& fit_err, Report& rep, Candidates& stage_cands,
+                          const RunOptions& opt, double& fit_err, StageRecord& record, Candidates& stage_cands,
                           const std::function<void(const std::string&)>& step) {
   const ScrewJoint& j = in.j;
   const double T = in.T;
   const TopoDS_Shape direct = opt.direct_builds ? ball_screw_stage(in, fit_err, stage_cands) : TopoDS_Shape();
   if (!direct.IsNull()) {
-    rep.varieties += int(stage_cands.vars.size());
-    rep.cells += 1;
+    record.varieties += int(stage_cands.vars.size());
+    record.cells += 1;
     return direct;
   }
   const PointTestMaker stage_member = orbit_entity
@@ -46,8 +46,7 @@ TopoDS_Shape entity_stage(const StageInput& in, const OrbitSolidPtr& orbit_entit
   // section; when that does not close either, the arrangement of cells is made instead.
   auto boundary = [&](const Settings& settings) {
     BoundarySweep b = boundary_sweep(in.body, j, T, stage_member, in.size, in.tol, settings, in.stage, in.joint_no);
-    for (auto it = b.seconds.begin(); it != b.seconds.end(); ++it)
-      rep.seconds[it.key()] = rep.seconds.value(it.key(), 0.0) + it.value().get<double>();
+    for (auto it = b.seconds.begin(); it != b.seconds.end(); ++it) record.add_seconds(it.key(), it.value().get<double>());
     if (!b.solid.IsNull() && !closed_solids(b.solid) && !closed_solids(healed(b.solid))) {
       b.failure = "the pieces of its sweep boundary do not close";
       b.solid.Nullify();
@@ -68,15 +67,15 @@ TopoDS_Shape entity_stage(const StageInput& in, const OrbitSolidPtr& orbit_entit
   fit_err = std::max(fit_err, b.fit_error);
   for (auto& v : b.varieties) stage_cands.add_variety(std::move(v));
   for (std::size_t k = 0; k < b.candidate_faces.size(); ++k) stage_cands.add(b.candidate_ids[k], {b.candidate_faces[k]});
-  rep.varieties += int(stage_cands.vars.size());
-  rep.cells += 1;
+  record.varieties += int(stage_cands.vars.size());
+  record.cells += 1;
   return b.solid;
 }
 
 /// A stage whose arrangement lacked faces left out as internal, checked (valid, or valid once
 /// healed; closed; its two volumes agreeing): built again by `rebuild` from every candidate when
 /// the check fails.
-TopoDS_Shape checked_stage(const TopoDS_Shape& shape, int stage, double fit_err, double tol, Report& rep,
+TopoDS_Shape checked_stage(const TopoDS_Shape& shape, double fit_err, double tol, StageRecord& record,
                            const std::function<void(const std::string&)>& step,
                            const std::function<TopoDS_Shape()>& rebuild) {
   const auto t_chk = Clock::now();
@@ -88,50 +87,50 @@ TopoDS_Shape checked_stage(const TopoDS_Shape& shape, int stage, double fit_err,
     if (!h.IsNull() && check_solid(h).agree(std::max({fit_err, max_tolerance(h), tol}))) {
       checked = h;
       agree = true;
-      rep.healed_stages.push_back(stage);
+      record.healed = true;
     }
   }
-  rep.seconds["stage_checks"] = rep.seconds.value("stage_checks", 0.0) + since(t_chk);
+  record.add_seconds("stage_checks", since(t_chk));
   if (agree) return checked;
-  step("stage " + std::to_string(stage) + " failed its checks: again with every candidate");
-  const TopoDS_Shape rebuilt = rebuild();
-  rep.unpruned_stages.push_back(stage);
-  return rebuilt;
+  step("stage " + std::to_string(record.stage) + " failed its checks: again with every candidate");
+  return rebuild();
 }
 
 /// The stage of one joint that the arrangement of cells builds: candidates pruned, then, for
 /// every stage but a judged chain's last, checked and built again from every candidate when the
 /// check fails. For the last stage of a judged chain, `redo` receives the rebuild instead.
 TopoDS_Shape cells_stage(const StageInput& in, const ChainEntity& entity, std::shared_ptr<const ParametricEntity> spe,
-                         bool last_judged, const RunOptions& opt, double& fit_err, Report& rep,
-                         Candidates& stage_cands, std::function<TopoDS_Shape(Candidates*)>* redo,
+                         bool last_judged, const RunOptions& opt, double& fit_err, StageRecord& record,
+                         Candidates& stage_cands, std::function<TopoDS_Shape(Candidates*, StageRecord&)>* redo,
                          const std::function<void(const std::string&)>& step) {
-  const int varieties_before = rep.varieties, cells_before = rep.cells;
   // the stage's input, copied: the rebuild may run after this function has returned
   auto sweep_stage = [body = in.body, dim = in.dim, j = in.j, T = in.T, sd = in.sd, spe, sd_motion = in.sd_motion,
                       esize = in.esize, size = in.size, tol = in.tol, fit_tol = in.fit_tol, stage = in.stage,
-                      joint_no = in.joint_no, varieties_before, cells_before, &fit_err, &rep,
-                      direct = opt.direct_builds](bool prune, PruneCount* pruned, Candidates* out) {
-    rep.varieties = varieties_before;
-    rep.cells = cells_before;
-    auto& rc = rep.restored_candidates;
-    rc.erase(std::remove_if(rc.begin(), rc.end(), [&](const auto& r) { return r.first == stage; }), rc.end());
+                      joint_no = in.joint_no, &fit_err, direct = opt.direct_builds](
+                         bool prune, PruneCount* pruned, Candidates* out, StageRecord& rec) {
+    StageRecord fresh;  // a rebuild starts the stage's counts again and keeps its seconds
+    fresh.stage = rec.stage;
+    fresh.from_cells = rec.from_cells;
+    fresh.unpruned = !prune;
+    fresh.seconds = rec.seconds;
+    rec = fresh;
     *out = Candidates();
     const StageInput again{body, dim, j, T, sd, spe.get(), sd_motion, esize, size, tol, fit_tol, stage, joint_no};
-    return solid_sweep(again, fit_err, rep, out, prune, pruned, direct);
+    return solid_sweep(again, fit_err, rec, out, prune, pruned, direct);
   };
   PruneCount pruned;
-  TopoDS_Shape shape = sweep_stage(true, &pruned, &stage_cands);
+  TopoDS_Shape shape = sweep_stage(true, &pruned, &stage_cands, record);
   // Building the arrangement of every candidate again costs time that grows fast with their
   // number; past the settings' limit a stage that fails its checks is not rebuilt.
   const bool may_rebuild = pruned.dropped > 0 && std::size_t(pruned.candidates) <= opt.settings.rebuild_candidate_limit;
   if (!may_rebuild) return shape;
   if (last_judged) {
-    *redo = [sweep_stage](Candidates* out) { return sweep_stage(false, nullptr, out); };
+    *redo = [sweep_stage](Candidates* out, StageRecord& rec) { return sweep_stage(false, nullptr, out, rec); };
     return shape;
   }
-  return checked_stage(shape, in.stage, fit_err, entity.tol, rep, step,
-                       [&sweep_stage, &stage_cands]() { return sweep_stage(false, nullptr, &stage_cands); });
+  return checked_stage(shape, fit_err, entity.tol, record, step, [&sweep_stage, &stage_cands, &record]() {
+    return sweep_stage(false, nullptr, &stage_cands, record);
+  });
 }
 
 /// The only solid of a shape as itself (classifiers want a solid, not a compound of one).
@@ -182,7 +181,7 @@ double model_size(const TopoDS_Shape& raw, const Motion& motion) {
 }
 
 ChainSweep sweep_chain(const ChainEntity& entity, const Motion& motion, bool judged, const RunOptions& opt,
-                       double& fit_err, Report& rep, const std::function<void(const std::string&)>& step) {
+                       double& fit_err, RunRecord& record, const std::function<void(const std::string&)>& step) {
   ChainSweep out;
   out.raw = entity.raw;
   const bool parametric = entity.run.spec.kind == EntityKind::Curve || entity.run.spec.kind == EntityKind::Surface;
@@ -213,7 +212,7 @@ ChainSweep sweep_chain(const ChainEntity& entity, const Motion& motion, bool jud
       out.raw = entity_shape(current, entity.fit_tol, &fit_err);
       shape = moved(out.raw, G);
       stage_pe = ParametricEntity::make(current);
-      rep.seconds["entity"] = rep.seconds.value("entity", 0.0) + since(t_fit);
+      record.add_seconds("entity", since(t_fit));
       continue;
     }
     const TopoDS_Shape body = moved(shape, j.transform(j.lo));
@@ -223,16 +222,23 @@ ChainSweep sweep_chain(const ChainEntity& entity, const Motion& motion, bool jud
     // and a stage it cannot build, go through the arrangement of cells.
     bool built = dim <= 1;
     Candidates stage_cands;
+    // a solid stage's record goes in first, so that a failure keeps what the stage did
+    StageRecord point_or_curve_stage;
+    if (dim >= 2) {
+      record.stages.emplace_back();
+      record.stages.back().stage = n - i;
+    }
+    StageRecord& stage_record = dim >= 2 ? record.stages.back() : point_or_curve_stage;
     if (!built && dim == 3 && i == n - 1 && !std::getenv("SWEEP_CELLS_ENGINE")) {
       const auto t_stage = Clock::now();
       const StageInput in{body, dim, j, T, nullptr, nullptr, motion, extent(body), entity.size, entity.tol,
                           entity.fit_tol, n - i, i + 1};
-      const TopoDS_Shape solid = entity_stage(in, entity.run.orbit, G, opt, fit_err, rep, stage_cands, step);
+      const TopoDS_Shape solid = entity_stage(in, entity.run.orbit, G, opt, fit_err, stage_record, stage_cands, step);
       if (!solid.IsNull()) {
         shape = solid;
         built = true;
       }
-      rep.seconds["stages"] = rep.seconds.value("stages", 0.0) + since(t_stage);
+      stage_record.add_seconds("stages", since(t_stage));
     }
     if (!built) {
       Motion sd_motion;
@@ -244,9 +250,9 @@ ChainSweep sweep_chain(const ChainEntity& entity, const Motion& motion, bool jud
       const bool use_pe = stage_pe && entity_intact && dim == 2;
       const StageInput in{body, dim, j, T, use_sd ? entity.run.sd.get() : nullptr, nullptr, sd_motion, extent(body),
                           entity.size, entity.tol, entity.fit_tol, n - i, i + 1};
-      shape = cells_stage(in, entity, use_pe ? stage_pe : nullptr, judged && i == 0, opt, fit_err, rep, stage_cands,
-                          &out.redo_last, step);
-      if (dim == 3) rep.cell_stages.push_back(n - i);
+      stage_record.from_cells = dim == 3;
+      shape = cells_stage(in, entity, use_pe ? stage_pe : nullptr, judged && i == 0, opt, fit_err, stage_record,
+                          stage_cands, &out.redo_last, step);
     }
     if (dim >= 2) {
       // a solid stage, from either engine: its candidates go to the report

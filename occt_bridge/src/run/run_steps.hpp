@@ -7,6 +7,7 @@
 #include <TopoDS_Shape.hxx>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "base/internal.hpp"
 #include "arrangement/stage_sweep.hpp"
@@ -56,24 +57,39 @@ struct ChainEntity {
   double size, tol, fit_tol;
 };
 
+/// What the stages of a run did, in the order they were built, and the seconds of steps outside
+/// them (the entity, the union of segments): the report's counts and timings come from here only.
+struct RunRecord {
+  std::vector<StageRecord> stages;
+  nlohmann::json seconds = nlohmann::json::object();
+  void add_seconds(const std::string& key, double s) { seconds[key] = seconds.value(key, 0.0) + s; }
+  /// Whether a solid stage was built from the arrangement of cells.
+  bool any_from_cells() const;
+};
+/// Writes the record into the report (once per run: it adds its seconds to the report's): the
+/// varieties and cells summed over stages, the stages built from cells, without pruning or healed,
+/// and the candidates restored.
+void write_run_record(const RunRecord& record, Report& rep);
+
 /// What the stages of a chain built: the swept set (a solid when `dim` is 3), the entity's shape
 /// the last stages swept (`raw`, extended where a joint slid it along itself), the last solid
 /// stage's candidates, and the rebuild of that stage from every candidate when pruning left some
-/// out (empty otherwise, and always for a chain that is not judged on its own).
+/// out (empty otherwise, and always for a chain that is not judged on its own; it starts the
+/// stage's record again, its seconds kept).
 struct ChainSweep {
   TopoDS_Shape shape;
   int dim = 0;
   TopoDS_Shape raw;
   Candidates last_cands;
-  std::function<TopoDS_Shape(Candidates*)> redo_last;
+  std::function<TopoDS_Shape(Candidates*, StageRecord&)> redo_last;
 };
 
 /// The stages of `motion`, innermost joint first, each sweeping the set the previous one built.
 /// A chain that is `judged` leaves its last stage for the final checks (and `redo_last`); one that
 /// is not (a segment of a longer motion) checks it like every other stage, rebuilding it from every
-/// candidate when the check fails. Fit errors go to `fit_err`, counts and timings to `rep`.
+/// candidate when the check fails. Fit errors go to `fit_err`, what each stage did to `record`.
 ChainSweep sweep_chain(const ChainEntity& entity, const Motion& motion, bool judged, const RunOptions& opt,
-                       double& fit_err, Report& rep, const std::function<void(const std::string&)>& step);
+                       double& fit_err, RunRecord& record, const std::function<void(const std::string&)>& step);
 
 /// The trajectory of a point under one joint as an edge (the sweep of a point).
 TopoDS_Shape point_sweep(const TopoDS_Shape& body, const ScrewJoint& j, double T, double tol, double size);
@@ -111,14 +127,17 @@ IndependentMembership independent_membership(const RunEntity& entity, const Moti
 class FinalChecks {
  public:
   /// `fit_err`: the computation's fitting error (read at each check: a rebuild can change it);
-  /// `no_test`: why there is no verdict when `independent` is empty.
+  /// `cells_built`: a solid stage was built from the arrangement of cells (the solid is then held to
+  /// the independent volume too); `no_test`: why there is no verdict when `independent` is empty.
   FinalChecks(Report& rep, IndependentMembership independent, const Eigen::AlignedBox3d& true_box, double tol,
-              double size, const double& fit_err, const Settings& settings, std::string no_test);
+              double size, const double& fit_err, const Settings& settings, bool cells_built, std::string no_test);
   std::string operator()(const TopoDS_Shape& solid);
   /// The checks of `result`, which an invalid solid passes once healed (then `result` is the
-  /// healed solid and `stage` goes to the report's healed stages) and a solid with a geometric error
-  /// passes with its pcurves projected again: the reason it fails, or empty.
-  std::string judge(TopoDS_Shape& result, int stage);
+  /// healed solid and result_healed() is true) and a solid with a geometric error passes with its pcurves
+  /// projected again: the reason it fails, or empty.
+  std::string judge(TopoDS_Shape& result);
+  /// Whether the last judge() healed the solid.
+  bool result_healed() const { return healed_; }
   /// Whether the last failure is one that a face left out by pruning can cause (a missing or
   /// wrong piece of boundary); a geometric error or an undecided verdict is not.
   bool rebuild_may_help() const { return rebuild_may_help_; }
@@ -135,8 +154,9 @@ class FinalChecks {
   double tol_, size_;
   const double& fit_err_;
   const Settings& settings_;
+  bool cells_built_;
   std::string no_test_;
-  bool rebuild_may_help_ = false, geometric_error_ = false;
+  bool rebuild_may_help_ = false, geometric_error_ = false, healed_ = false;
 };
 
 /// The Monte Carlo volume of --verify into the report, in the solid's box enlarged by 1 % of the

@@ -109,9 +109,10 @@ IndependentMembership search_over_t(const std::shared_ptr<const SignedDistance>&
 
 /// The checks of a solid result, the Monte Carlo volume of --verify by `member`, the verdict.
 void finish_solid(TopoDS_Shape result, FinalChecks& check, const MemberTestMaker& member, double size, double tol,
-                  const RunOptions& opt, RunResult& res) {
+                  const RunOptions& opt, RunRecord& record, RunResult& res) {
   Report& rep = res.report;
-  std::string why = check.judge(result, 1);
+  std::string why = check.judge(result);
+  if (check.result_healed()) record.stages.back().healed = true;
   if (opt.verify) {
     if (opt.progress) opt.progress("Monte Carlo volume");
     const auto t_mc = Clock::now();
@@ -127,7 +128,7 @@ void finish_solid(TopoDS_Shape result, FinalChecks& check, const MemberTestMaker
     rep.volume_mc = mc.volume;
     rep.volume_mc_stderr = mc.stderr_;
     rep.mc_samples = mc.samples;
-    rep.seconds["monte_carlo"] = since(t_mc);
+    record.add_seconds("monte_carlo", since(t_mc));
   }
   if (why.empty()) why = monte_carlo_disagreement(rep, tol, size, opt.settings);
   rep.status = why.empty() ? "ok" : "failed";
@@ -167,7 +168,8 @@ TopoDS_Shape fused(const std::vector<TopoDS_Shape>& parts, double size) {
 /// Segments that continue one screw are swept as one. The judge is the union of the segments' own
 /// independent memberships (exact for each screw; the segments come from the input motion alone).
 void screw_segments_sweep(const Spec& spec, const StageMotion& m, const Sizing& sizing,
-                          const std::vector<ScrewSegment>& screw_segments, const RunOptions& opt, RunResult& res) {
+                          const std::vector<ScrewSegment>& screw_segments, const RunOptions& opt, RunRecord& record,
+                          RunResult& res) {
   Report& rep = res.report;
   if (screw_segments.empty()) throw ComputeError("the poses never move the entity: nothing is swept");
   const auto t_fit = Clock::now();
@@ -177,7 +179,7 @@ void screw_segments_sweep(const Spec& spec, const StageMotion& m, const Sizing& 
   rep.tol_requested = tol;
   const TopoDS_Shape raw = fitted_entity_shape(spec.entity, sizing.shape, fit_tol, &fit_err);
   const Eigen::AlignedBox3d entity_box = box_of(raw);
-  rep.seconds["entity"] = rep.seconds.value("entity", 0.0) + since(t_fit);
+  record.add_seconds("entity", since(t_fit));
   const auto segments = KeyframeMotion::merged(screw_segments, size);
   RunOptions chain_opt = opt;  // the segments' candidates are not reported
   chain_opt.varieties = nullptr;
@@ -200,7 +202,7 @@ void screw_segments_sweep(const Spec& spec, const StageMotion& m, const Sizing& 
     motion.home = seg.start;
     try {
       const ChainSweep chain = sweep_chain({sizing.entity, raw, size, tol, fit_tol}, motion, false, chain_opt,
-                                           fit_err, rep, step);
+                                           fit_err, record, step);
       parts.push_back(chain.shape);
       dim = chain.dim;
     } catch (const ComputeError& e) {
@@ -226,16 +228,17 @@ void screw_segments_sweep(const Spec& spec, const StageMotion& m, const Sizing& 
   if (parts.size() > 1 && opt.progress) opt.progress("the union of " + std::to_string(parts.size()) + " segments");
   const auto t_union = Clock::now();
   const TopoDS_Shape result = fused(parts, size);
-  if (parts.size() > 1) rep.seconds["union"] = since(t_union);
+  if (parts.size() > 1) record.add_seconds("union", since(t_union));
   const IndependentMembership member = union_of(members);
-  FinalChecks check(rep, member, true_box, tol, size, fit_err, opt.settings, "");
-  finish_solid(result, check, member.test, size, tol, opt, res);
+  FinalChecks check(rep, member, true_box, tol, size, fit_err, opt.settings, record.any_from_cells(), "");
+  finish_solid(result, check, member.test, size, tol, opt, record, res);
 }
 
 /// A ball under a general one-parameter motion, given as pieces along which its centre's path is
 /// smooth (the whole motion, or the segments of linear keyframes): the union of their tubes.
 void ball_stage_sweep(const Spec& spec, const StageMotion& m, const Sizing& sizing,
-                      const std::vector<const StageMotion*>& pieces, const RunOptions& opt, RunResult& res) {
+                      const std::vector<const StageMotion*>& pieces, const RunOptions& opt, RunRecord& record,
+                      RunResult& res) {
   Report& rep = res.report;
   double fit_err = sizing.fit_err;
   const TopoDS_Shape& raw = sizing.shape;
@@ -254,19 +257,22 @@ void ball_stage_sweep(const Spec& spec, const StageMotion& m, const Sizing& sizi
                          (pieces.size() > 1 ? " (segment " + std::to_string(k + 1) + ")" : std::string()) + ": " + why);
   }
   const TopoDS_Shape solid = fused(tubes, size);
-  rep.seconds["stages"] = since(t_build);
-  rep.varieties = 3 * int(pieces.size());
-  rep.cells = int(pieces.size());
-  const IndependentMembership member =
-      search_over_t(sizing.entity.sd, m, size, opt.settings);
-  FinalChecks check(rep, member, stage_swept_box(box_of(raw), m), tol, size, fit_err, opt.settings, "");
-  finish_solid(solid, check, member.test, size, tol, opt, res);
+  StageRecord tubes_record;  // each piece: its tube and two half balls
+  tubes_record.stage = 1;
+  tubes_record.varieties = 3 * int(pieces.size());
+  tubes_record.cells = int(pieces.size());
+  tubes_record.add_seconds("stages", since(t_build));
+  record.stages.push_back(tubes_record);
+  const IndependentMembership member = search_over_t(sizing.entity.sd, m, size, opt.settings);
+  FinalChecks check(rep, member, stage_swept_box(box_of(raw), m), tol, size, fit_err, opt.settings, false, "");
+  finish_solid(solid, check, member.test, size, tol, opt, record, res);
 }
 
 /// A point (its trajectory, a curve) or a curve (a surface) under a general motion, one fitted
 /// B-spline per smooth piece of the motion.
 void low_dimension_stage_sweep(const Spec& spec, const StageMotion& m, const Sizing& sizing,
-                               const std::vector<const StageMotion*>& pieces, const RunOptions& opt, RunResult& res) {
+                               const std::vector<const StageMotion*>& pieces, const RunOptions& opt,
+                               RunRecord& record, RunResult& res) {
   Report& rep = res.report;
   const int dim = spec.entity.dimension();
   const std::shared_ptr<const ParametricEntity>& pe = sizing.entity.pe;
@@ -315,7 +321,7 @@ void low_dimension_stage_sweep(const Spec& spec, const StageMotion& m, const Siz
       bb.Add(comp, BRepBuilderAPI_MakeFace(srf, Settings::resolution * size).Face());
     }
   }
-  rep.seconds["stages"] = since(t_build);
+  record.add_seconds("stages", since(t_build));
   rep.dimension = dim + 1;
   res.shape = std::make_shared<Shape>(finish_curve_or_surface(comp, dim + 1, size, fit_err, opt.verify, rep));
 }
@@ -330,11 +336,12 @@ RunResult run_stage_motion_sweep(const Spec& spec, const RunOptions& opt) {
   install_signal_handlers();
   const StopScope stop_scope(opt.stop);
   const StageMotion& m = *spec.motion.stage;
+  RunRecord record;
   try {
     OCC_CATCH_SIGNALS
     Sizing sizing{RunEntity(spec.entity), {}, 0.0};
     sizing.shape = sizing_shape(spec.entity, &sizing.fit_err, sizing.entity.core.get());
-    rep.seconds["entity"] = since(t_start);
+    record.add_seconds("entity", since(t_start));
     const auto* km = dynamic_cast<const KeyframeMotion*>(&m);
     auto segments = km ? km->screw_segments() : std::nullopt;
     // any other motion that is one screw goes to the screw engine
@@ -346,7 +353,7 @@ RunResult run_stage_motion_sweep(const Spec& spec, const RunOptions& opt) {
       for (const auto& seg : *segments)
         if (seg.joint.type == JointType::Prismatic) segments.reset();
     if (segments) {
-      screw_segments_sweep(spec, m, sizing, *segments, opt, res);
+      screw_segments_sweep(spec, m, sizing, *segments, opt, record, res);
     } else if (spec.entity.kind == EntityKind::Sphere || spec.entity.dimension() <= 1) {
       // linear keyframes that are not screws turn at the poses: one smooth piece per segment
       std::vector<std::unique_ptr<KeyframeMotion>> segments;
@@ -361,9 +368,9 @@ RunResult run_stage_motion_sweep(const Spec& spec, const RunOptions& opt) {
         }
       }
       if (spec.entity.dimension() <= 1) {
-        low_dimension_stage_sweep(spec, m, sizing, pieces, opt, res);
+        low_dimension_stage_sweep(spec, m, sizing, pieces, opt, record, res);
       } else {
-        ball_stage_sweep(spec, m, sizing, pieces, opt, res);
+        ball_stage_sweep(spec, m, sizing, pieces, opt, record, res);
       }
     } else {
       throw ComputeError(std::string("a ") + to_string(spec.entity.kind) + " entity under a " +
@@ -380,6 +387,7 @@ RunResult run_stage_motion_sweep(const Spec& spec, const RunOptions& opt) {
     rep.status = "failed";
     rep.message = e.what();
   }
+  write_run_record(record, rep);
   rep.seconds_total = since(t_start);
   return res;
 }

@@ -109,20 +109,39 @@ std::string monte_carlo_disagreement(const Report& rep, double tol, double size,
          std::to_string(rep.volume_mc) + " +- " + std::to_string(rep.volume_mc_stderr) + ")";
 }
 
+bool RunRecord::any_from_cells() const {
+  return std::any_of(stages.begin(), stages.end(), [](const StageRecord& s) { return s.from_cells; });
+}
+
+void write_run_record(const RunRecord& record, Report& rep) {
+  const auto add_seconds = [&rep](const nlohmann::json& seconds) {
+    for (auto it = seconds.begin(); it != seconds.end(); ++it)
+      rep.seconds[it.key()] = rep.seconds.value(it.key(), 0.0) + it.value().get<double>();
+  };
+  add_seconds(record.seconds);
+  for (const StageRecord& s : record.stages) {
+    rep.varieties += s.varieties;
+    rep.cells += s.cells;
+    if (s.from_cells) rep.cell_stages.push_back(s.stage);
+    if (s.unpruned) rep.unpruned_stages.push_back(s.stage);
+    if (s.healed) rep.healed_stages.push_back(s.stage);
+    for (int faces : s.restored) rep.restored_candidates.push_back({s.stage, faces});
+    add_seconds(s.seconds);
+  }
+}
+
 RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
   const auto t_start = Clock::now();
   RunResult res;
   Report& rep = res.report;
   rep.dimension = spec.entity.dimension();
   const Motion& motion = spec.motion.motion;
-  auto fail = [&](const std::string& msg) {
-    rep.status = "failed";
-    rep.message = msg;
+  if (spec.motion.stage) return run_stage_motion_sweep(spec, opt);
+  if (motion.dof() == 0) {
+    rep.message = "the motion has no joint";
     rep.seconds_total = since(t_start);
     return res;
-  };
-  if (spec.motion.stage) return run_stage_motion_sweep(spec, opt);
-  if (motion.dof() == 0) return fail("the motion has no joint");
+  }
   install_signal_handlers();
   const StopScope stop_scope(opt.stop);
   // each step of a long run: the stop request is polled, then the step is shown
@@ -132,6 +151,7 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
     last_step = what;
     if (opt.progress) opt.progress(what);
   };
+  RunRecord record;
   try {
     OCC_CATCH_SIGNALS
     // Size and tolerance from the entity and the reach of the motion.
@@ -144,8 +164,8 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
     const auto [tol, fit_tol] = run_tolerance(spec.tolerance, size, opt.settings);
     rep.tol_requested = tol;
     TopoDS_Shape raw = fitted_entity_shape(spec.entity, sizing, fit_tol, &fit_err);
-    rep.seconds["entity"] = since(t_start);
-    ChainSweep chain = sweep_chain({entity, raw, size, tol, fit_tol}, motion, true, opt, fit_err, rep, step);
+    record.add_seconds("entity", since(t_start));
+    ChainSweep chain = sweep_chain({entity, raw, size, tol, fit_tol}, motion, true, opt, fit_err, record, step);
     raw = chain.raw;
     const int n = int(motion.dof());
     const int dim = chain.dim;
@@ -156,6 +176,7 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
     if (dim < 3) {
       // A point sweeps a curve and a curve a surface: written as edges or faces, with no volume.
       res.shape = std::make_shared<Shape>(finish_curve_or_surface(shape, dim, size, fit_err, opt.verify, rep));
+      write_run_record(record, rep);
       rep.seconds_total = since(t_start);
       return res;
     }
@@ -172,16 +193,16 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
     }();
     FinalChecks check_result(
         rep, independent_membership(entity, clipped, raw, size, opt.settings),
-        swept_box(entity_box, clipped), tol, size, fit_err, opt.settings,
+        swept_box(entity_box, clipped), tol, size, fit_err, opt.settings, record.any_from_cells(),
         "no membership test independent of the solid exists for a " + std::string(to_string(spec.entity.kind)) +
             " entity under " + std::to_string(n) + " joints: the solid cannot be checked");
-    std::string why = check_result.judge(result, n);
+    std::string why = check_result.judge(result);
+    if (check_result.result_healed()) record.stages.back().healed = true;
     if (!why.empty() && chain.redo_last && check_result.rebuild_may_help()) {
       // Pruning may have left out a face that carries a strip of the boundary: the last stage
       // is built again from every candidate.
       step("the solid failed its checks (" + why + "): last stage again with every candidate");
-      result = chain.redo_last(&last_cands);
-      rep.unpruned_stages.push_back(n);
+      result = chain.redo_last(&last_cands, record.stages.back());
       why = check_result(result);
     }
 
@@ -214,11 +235,16 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
   } catch (const InputError&) {
     throw;
   } catch (const Standard_Failure& f) {
-    return fail(std::string("OCCT: ") + (f.GetMessageString() ? f.GetMessageString() : "failure") + " (after: " +
-                last_step + ")");
+    rep.status = "failed";
+    rep.message = std::string("OCCT: ") + (f.GetMessageString() ? f.GetMessageString() : "failure") + " (after: " +
+                  last_step + ")";
+    res.shape.reset();
   } catch (const ComputeError& e) {
-    return fail(e.what());
+    rep.status = "failed";
+    rep.message = e.what();
+    res.shape.reset();
   }
+  write_run_record(record, rep);
   rep.seconds_total = since(t_start);
   return res;
 }

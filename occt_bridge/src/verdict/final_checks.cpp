@@ -81,7 +81,8 @@ IndependentMembership independent_membership(const RunEntity& run_entity, const 
 
 const std::string FinalChecks::invalid = "the solid is not valid (BRepCheck)";
 
-std::string FinalChecks::judge(TopoDS_Shape& result, int stage) {
+std::string FinalChecks::judge(TopoDS_Shape& result) {
+  healed_ = false;
   std::string why = (*this)(result);
   if (why == invalid) {
     const TopoDS_Shape h = healed(result);
@@ -90,7 +91,7 @@ std::string FinalChecks::judge(TopoDS_Shape& result, int stage) {
       const std::string why_healed = (*this)(h);
       if (why_healed.empty() || geometric_error()) {
         result = h;
-        rep_.healed_stages.push_back(stage);
+        healed_ = true;
         why = why_healed;
       } else {
         why = why_healed + " (after OCCT's shape healing of a solid that was not valid)";
@@ -108,7 +109,8 @@ std::string FinalChecks::judge(TopoDS_Shape& result, int stage) {
 }
 
 FinalChecks::FinalChecks(Report& rep, IndependentMembership independent, const Eigen::AlignedBox3d& true_box,
-                         double tol, double size, const double& fit_err, const Settings& settings, std::string no_test)
+                         double tol, double size, const double& fit_err, const Settings& settings, bool cells_built,
+                         std::string no_test)
     : rep_(rep),
       independent_(std::move(independent)),
       true_box_(true_box),
@@ -116,6 +118,7 @@ FinalChecks::FinalChecks(Report& rep, IndependentMembership independent, const E
       size_(size),
       fit_err_(fit_err),
       settings_(settings),
+      cells_built_(cells_built),
       no_test_(std::move(no_test)) {
   rep_.verdict_membership = independent_.name;
 }
@@ -208,7 +211,7 @@ std::string FinalChecks::independent_volume_check() {
   // boundary did not close) is held to the independent volume as well: a solid whose faces all lie
   // within the tolerance of the true boundary has a volume within the tolerance times its area.
   Report& rep = rep_;
-  if (!independent_.volume || rep.cell_stages.empty() || settings_.independent_volume_rel_tol <= 0) return "";
+  if (!independent_.volume || !cells_built_ || settings_.independent_volume_rel_tol <= 0) return "";
   const auto t_vol = Clock::now();
   double error = 0;
   const double v = independent_.volume(settings_.independent_volume_rel_tol, &error);
