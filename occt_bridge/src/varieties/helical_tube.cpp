@@ -42,6 +42,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <optional>
 
 #include "base/internal.hpp"
 #include "base/stop.hpp"
@@ -374,34 +375,84 @@ Handle(Geom2d_BSplineCurve) fit_pcurve(const std::function<Eigen::RowVectorXd(do
 
 }  // namespace
 
-TopoDS_Shape ball_screw_sweep_overlap(const Eigen::Vector3d& c, double r, const ScrewJoint& j, double T,
-                                      double fit_tol, double size, double* fit_err, std::vector<TopoDS_Face>* faces,
-                                      std::vector<int>* roles) {
-  if (j.type != JointType::Helical || j.pitch == 0) return {};
-  const HelixPath H(j, c);
-  const double R = H.radius(), b = j.pitch, margin = 1e-3 * r;
-  if (R <= 1e-9 * (r + std::abs(b))) return {};
+namespace {
+
+/// A ball screw-swept over more than a turn and a half whose neighbouring turns meet, built in
+/// steps that share what they find: the arcs of the start circle that the next and the previous
+/// turn cover, the tube's tongues (where it leaves the set a neighbouring turn covers) and the half
+/// balls' tongues, a guard that samples the covered set, and the faces.
+class OverlapSweep {
+ public:
+  OverlapSweep(const Eigen::Vector3d& c, double r, const ScrewJoint& j, double T, double fit_tol, double size)
+      : c_(c), r_(r), j_(j), T_(T), fit_tol_(fit_tol), size_(size), H_(j, c) {}
+
+  /// The seam's angle on the start circle when the sweep is one this builds: the tube smooth, only
+  /// neighbouring turns meeting, each covering one arc of the start circle, the two apart.
+  std::optional<double> seam_phase() const;
+  /// The tube from `phase`, the covered arcs in its v, and the tongues of the tube and of the half
+  /// balls fitted; false when a step does not reach its tolerance.
+  bool tongues(double phase);
+  /// The faces sewn into the solid while the guard runs; null when either fails.
+  TopoDS_Shape solid(std::vector<TopoDS_Face>* faces, std::vector<int>* roles);
+  /// The tube's bound on its distance from the true tube, and the fits' errors carried to space.
+  double error() const { return err_; }
+
+ private:
+  double covered_up(const Eigen::Vector3d& x) const { return H_.min_dist2(x, up_lo, up_hi, nullptr) - r_ * r_; }
+  double covered_dn(const Eigen::Vector3d& x) const { return H_.min_dist2(x, dn_lo, dn_hi, nullptr) - r_ * r_; }
+  Eigen::Vector3d start_row(double v) const { return to_eigen(tb_.tube->Value(0.0, v)); }
+  bool arc(int which, double* v1, double* v2) const;
+  double tongue_time(double v, bool up, bool end = false) const;
+  Eigen::Vector3d tube_point(double v, bool up, bool end = false) const {
+    return to_eigen(tb_.tube->Value(tongue_time(v, up, end), v));
+  }
+  Handle(Geom2d_BSplineCurve) tube_tongue(double vs, double ve, bool up, double* e2d) const;
+  double on_ball(const Handle(Geom_BSplineSurface)& ball, const Eigen::Isometry3d& M, const Eigen::Vector3d& pole,
+                 const Eigen::Vector3d& y, double* u, double* v) const;
+  Handle(Geom2d_BSplineCurve) ball_tongue(const Handle(Geom_BSplineSurface)& ball, const Eigen::Isometry3d& M,
+                                          const Eigen::Vector3d& pole, double vs, double ve, double ts, double te,
+                                          bool up, double* umax, double* proj_err, double* e2d) const;
+  bool guard(std::size_t part) const;
+  bool tube_face(double vlo, double vhi, std::vector<TopoDS_Face>& fs, std::vector<int>& rl) const;
+  bool ball_faces(const Handle(Geom_BSplineSurface)& ball, const Handle(Geom2d_BSplineCurve)& tongue, double v1,
+                  double v2, double umax, int role, std::vector<TopoDS_Face>& fs, std::vector<int>& rl) const;
+
+  static constexpr double up_lo = M_PI, up_hi = 3 * M_PI, dn_lo = -3 * M_PI, dn_hi = -M_PI;
+  Eigen::Vector3d c_;
+  double r_;
+  const ScrewJoint& j_;
+  double T_, fit_tol_, size_;
+  HelixPath H_;
+  Tube tb_;
+  double err_ = 0;
+  double a1_ = 0, a2_ = 0, b1_ = 0, b2_ = 0;  ///< the arcs in the tube's v: [a1, a2] covered from above, [b1, b2] from below
+  double speed_ = 0;
+  Handle(Geom2d_BSplineCurve) tongue_up_, tongue_dn_, back_tongue_, front_tongue_;
+  double Ua1_ = 0, Ua2_ = 0, Ub1_ = 0, Ub2_ = 0, umax_back_ = 0, umax_front_ = 0, e2d_ = 0;
+};
+
+std::optional<double> OverlapSweep::seam_phase() const {
+  const double R = H_.radius(), b = j_.pitch, margin = 1e-3 * r_;
+  if (R <= 1e-9 * (r_ + std::abs(b))) return std::nullopt;
   // the tube is smooth (radius of curvature above r), a whole turn and a half is swept, balls
   // half a turn apart or two turns and more apart are disjoint: only the neighbouring turns meet
-  if ((R * R + b * b) / R <= r + margin || T < 3 * M_PI) return {};
-  if (H.chord(M_PI) <= 2 * (r + margin)) return {};
-  if (chord_lower_bound(R, b, r, 3 * M_PI, T) <= 2 * (r + margin)) return {};
+  if ((R * R + b * b) / R <= r_ + margin || T_ < 3 * M_PI) return std::nullopt;
+  if (H_.chord(M_PI) <= 2 * (r_ + margin)) return std::nullopt;
+  if (chord_lower_bound(R, b, r_, 3 * M_PI, T_) <= 2 * (r_ + margin)) return std::nullopt;
   // Points of the grazing circle at the start covered by the next turn (sigma in (pi, 3 pi)) and
   // by the previous one (sigma in (-3 pi, -pi)): each must be one arc, the two disjoint.
-  const Eigen::Vector3d t0 = j.velocity(c).normalized();
+  const Eigen::Vector3d t0 = j_.velocity(c_).normalized();
   const Eigen::Vector3d m0 = t0.unitOrthogonal(), m1 = t0.cross(m0);
-  const double up_lo = M_PI, up_hi = 3 * M_PI, dn_lo = -3 * M_PI, dn_hi = -M_PI;
-  auto covered_up = [&](const Eigen::Vector3d& x) { return H.min_dist2(x, up_lo, up_hi, nullptr) - r * r; };
-  auto covered_dn = [&](const Eigen::Vector3d& x) { return H.min_dist2(x, dn_lo, dn_hi, nullptr) - r * r; };
   const int N = 360;
   std::vector<int> state(N);  // 1: covered from above, 2: from below
   for (int k = 0; k < N; ++k) {
     const double th = 2 * M_PI * k / N;
-    const Eigen::Vector3d x = c + r * (std::cos(th) * m0 + std::sin(th) * m1);
+    const Eigen::Vector3d x = c_ + r_ * (std::cos(th) * m0 + std::sin(th) * m1);
     // and no ball within half a turn reaches it (the local tube is the boundary there)
-    if (H.min_dist2(x, 0.05, M_PI, nullptr) <= r * r || H.min_dist2(x, -M_PI, -0.05, nullptr) <= r * r) return {};
+    if (H_.min_dist2(x, 0.05, M_PI, nullptr) <= r_ * r_ || H_.min_dist2(x, -M_PI, -0.05, nullptr) <= r_ * r_)
+      return std::nullopt;
     const bool u = covered_up(x) < 0, d = covered_dn(x) < 0;
-    if (u && d) return {};
+    if (u && d) return std::nullopt;
     state[k] = u ? 1 : d ? 2 : 0;
   }
   // one arc of each kind, separated by uncovered samples; the seam goes in the middle of the
@@ -409,165 +460,171 @@ TopoDS_Shape ball_screw_sweep_overlap(const Eigen::Vector3d& c, double r, const 
   int changes = 0, gap_start = -1, gap_len = 0;
   for (int k = 0; k < N; ++k)
     if (state[k] != state[(k + N - 1) % N]) ++changes;
-  if (changes != 4) return {};
+  if (changes != 4) return std::nullopt;
   for (int k = 0; k < N; ++k) {
     if (state[k] != 0 || state[(k + N - 1) % N] == 0) continue;
     int len = 0;
     while (state[(k + len) % N] == 0) ++len;
     if (len > gap_len) gap_len = len, gap_start = k;
   }
-  if (gap_start < 0 || gap_len < 4) return {};
-  const double phase = 2 * M_PI * (gap_start + 0.5 * gap_len) / N;
-  Tube tb;
-  if (!build_tube(c, r, j, T, fit_tol, phase, &tb)) return {};
-  double err = tb.error;
-  auto start_row = [&](double v) { return to_eigen(tb.tube->Value(0.0, v)); };
-  // the arcs in the tube's v: [a1, a2] covered from above, [b1, b2] from below
-  auto arc = [&](int which, double* v1, double* v2) {
-    auto f = [&](double v) { return which == 1 ? covered_up(start_row(v)) : covered_dn(start_row(v)); };
-    const int M = 720;
-    int first = -1, last = -1;
-    for (int k = 1; k < M; ++k) {
-      const bool in = f(2 * M_PI * k / M) < 0;
-      if (in && first < 0) first = k;
-      if (in) last = k;
-    }
-    if (first <= 1 || last >= M - 1) return false;
-    const double h = 2 * M_PI / M;
-    *v1 = root_between([&](double v) { return -f(v); }, h * (first - 1), h * first);
-    *v2 = root_between(f, h * last, h * (last + 1));
-    return *v2 > *v1;
-  };
-  double a1, a2, b1, b2;
-  if (!arc(1, &a1, &a2) || !arc(2, &b1, &b2)) return {};
-  if (!(a2 < b1 || b2 < a1)) return {};
-  // Where the tube leaves the set covered by a neighbouring turn: for v in [a1, a2] the points at
-  // u <= T - a+(v) lie in the next turn (a+ the first time its ball reaches the start point), for
-  // v in [b1, b2] those at u >= -b-(v) in the previous one. At the arc ends the two crossing times
-  // meet; v = v1 + (v2 - v1)(1 - cos phi) / 2 makes the curve smooth in phi there.
-  const double speed = std::sqrt(R * R + b * b) + 2 * r;
-  const double ptol = 0.5 * fit_tol / speed;
-  // (at an arc's end, `end`, the two crossing times are the time of least distance)
-  auto tongue_time = [&](double v, bool up, bool end = false) {
-    const Eigen::Vector3d x = start_row(v);
-    double sm;
-    const double d2 = up ? H.min_dist2(x, up_lo, up_hi, &sm) : H.min_dist2(x, dn_lo, dn_hi, &sm);
-    if (end || d2 >= r * r) return up ? T - sm : -sm;
-    return up ? T - H.crossing(x, r, sm, up_lo) : -H.crossing(x, r, sm, dn_hi);
-  };
-  auto tube_tongue = [&](double vs, double ve, bool up, double* e2d) {
-    return fit_pcurve(
-        [&](double ph) {
-          const double v = vs + (ve - vs) * 0.5 * (1 - std::cos(ph));
-          return Eigen::RowVector3d(tongue_time(v, up, ph == 0 || ph == M_PI), v, 0.0);
-        },
-        ptol, e2d);
-  };
+  if (gap_start < 0 || gap_len < 4) return std::nullopt;
+  return 2 * M_PI * (gap_start + 0.5 * gap_len) / N;
+}
+
+bool OverlapSweep::arc(int which, double* v1, double* v2) const {
+  auto f = [&](double v) { return which == 1 ? covered_up(start_row(v)) : covered_dn(start_row(v)); };
+  const int M = 720;
+  int first = -1, last = -1;
+  for (int k = 1; k < M; ++k) {
+    const bool in = f(2 * M_PI * k / M) < 0;
+    if (in && first < 0) first = k;
+    if (in) last = k;
+  }
+  if (first <= 1 || last >= M - 1) return false;
+  const double h = 2 * M_PI / M;
+  *v1 = root_between([&](double v) { return -f(v); }, h * (first - 1), h * first);
+  *v2 = root_between(f, h * last, h * (last + 1));
+  return *v2 > *v1;
+}
+
+// Where the tube leaves the set covered by a neighbouring turn: for v in [a1, a2] the points at
+// u <= T - a+(v) lie in the next turn (a+ the first time its ball reaches the start point), for
+// v in [b1, b2] those at u >= -b-(v) in the previous one. At the arc ends the two crossing times
+// meet (`end`: there they are the time of least distance).
+double OverlapSweep::tongue_time(double v, bool up, bool end) const {
+  const Eigen::Vector3d x = start_row(v);
+  double sm;
+  const double d2 = up ? H_.min_dist2(x, up_lo, up_hi, &sm) : H_.min_dist2(x, dn_lo, dn_hi, &sm);
+  if (end || d2 >= r_ * r_) return up ? T_ - sm : -sm;
+  return up ? T_ - H_.crossing(x, r_, sm, up_lo) : -H_.crossing(x, r_, sm, dn_hi);
+}
+
+// v = v1 + (v2 - v1)(1 - cos phi) / 2 makes the curve smooth in phi at the arc's ends.
+Handle(Geom2d_BSplineCurve) OverlapSweep::tube_tongue(double vs, double ve, bool up, double* e2d) const {
+  const double ptol = 0.5 * fit_tol_ / speed_;
+  return fit_pcurve(
+      [&](double ph) {
+        const double v = vs + (ve - vs) * 0.5 * (1 - std::cos(ph));
+        return Eigen::RowVector3d(tongue_time(v, up, ph == 0 || ph == M_PI), v, 0.0);
+      },
+      ptol, e2d);
+}
+
+double OverlapSweep::on_ball(const Handle(Geom_BSplineSurface)& ball, const Eigen::Isometry3d& M,
+                             const Eigen::Vector3d& pole, const Eigen::Vector3d& y, double* u, double* v) const {
+  // start from the angles about the ball's centre, then Gauss-Newton on the surface
+  const Eigen::Vector3d d = M.inverse() * y - c_;
+  const double z = d.dot(pole);
+  *v = std::atan2(d.dot(tb_.b0), d.dot(tb_.n0));
+  if (*v < 0) *v += 2 * M_PI;
+  *u = std::atan2(z, (d - z * pole).norm());
+  for (int it = 0; it < 30; ++it) {
+    gp_Pnt P;
+    gp_Vec Su, Sv;
+    ball->D1(*u, *v, P, Su, Sv);
+    const Eigen::Vector3d e = to_eigen(P) - y, a = to_eigen(Su), bb = to_eigen(Sv);
+    Eigen::Matrix2d A;
+    A << a.dot(a), a.dot(bb), a.dot(bb), bb.dot(bb);
+    const Eigen::Vector2d step = A.ldlt().solve(Eigen::Vector2d(a.dot(e), bb.dot(e)));
+    *u -= step(0);
+    *v -= step(1);
+    if (step.norm() < 1e-13) break;
+  }
+  return (to_eigen(ball->Value(*u, *v)) - y).norm();
+}
+
+// On the half balls the part inside the neighbouring turn is bounded by the same curve as the
+// tube's tongue (the ball meets that turn's tube there); its points are projected on the ball. The
+// ball's tongue runs from the rim point at v = vs to the one at ve, along the tube's tongue (from
+// tube v = ts to te, `up` for the tongue of the next turn).
+Handle(Geom2d_BSplineCurve) OverlapSweep::ball_tongue(const Handle(Geom_BSplineSurface)& ball,
+                                                      const Eigen::Isometry3d& M, const Eigen::Vector3d& pole,
+                                                      double vs, double ve, double ts, double te, bool up,
+                                                      double* umax, double* proj_err, double* e2d) const {
+  // which end of the tube's tongue is the rim point at vs
+  const Eigen::Vector3d rs = to_eigen(ball->Value(0.0, vs));
+  if ((tube_point(te, up, true) - rs).norm() < (tube_point(ts, up, true) - rs).norm()) std::swap(ts, te);
+  // the projections meet the rim points within the fitting error: that difference is spread
+  // linearly along the curve so that its ends are the rim points
+  double bu, bv;
+  on_ball(ball, M, pole, tube_point(ts, up, true), &bu, &bv);
+  const Eigen::Vector2d d0 = Eigen::Vector2d(0.0, vs) - Eigen::Vector2d(bu, bv);
+  on_ball(ball, M, pole, tube_point(te, up, true), &bu, &bv);
+  const Eigen::Vector2d d1 = Eigen::Vector2d(0.0, ve) - Eigen::Vector2d(bu, bv);
+  *umax = 0;
+  return fit_pcurve(
+      [&](double ph) {
+        const double v = ts + (te - ts) * 0.5 * (1 - std::cos(ph));
+        double pu, pv;
+        *proj_err = std::max(*proj_err, on_ball(ball, M, pole, tube_point(v, up, ph == 0 || ph == M_PI), &pu, &pv));
+        const Eigen::Vector2d uv = Eigen::Vector2d(pu, pv) + d0 * (1 - ph / M_PI) + d1 * (ph / M_PI);
+        *umax = std::max(*umax, uv(0));
+        return Eigen::RowVector3d(uv(0), uv(1), 0.0);
+      },
+      0.5 * fit_tol_ / (2 * r_), e2d);
+}
+
+bool OverlapSweep::tongues(double phase) {
+  if (!build_tube(c_, r_, j_, T_, fit_tol_, phase, &tb_)) return false;
+  err_ = tb_.error;
+  if (!arc(1, &a1_, &a2_) || !arc(2, &b1_, &b2_)) return false;
+  if (!(a2_ < b1_ || b2_ < a1_)) return false;
+  speed_ = std::sqrt(H_.radius() * H_.radius() + j_.pitch * j_.pitch) + 2 * r_;
   // Each pair of independent fits below runs on two threads (they only read the surfaces and
   // the helix); each keeps its own errors.
-  Handle(Geom2d_BSplineCurve) tongue_up, tongue_dn;
   double e2d_of[4] = {0, 0, 0, 0};
   parallel_for(2, [&]() -> std::function<void(std::size_t)> {
     return [&](std::size_t k) {
-      if (k == 0) tongue_up = tube_tongue(a2, a1, true, &e2d_of[0]);
-      else tongue_dn = tube_tongue(b1, b2, false, &e2d_of[1]);
+      if (k == 0) tongue_up_ = tube_tongue(a2_, a1_, true, &e2d_of[0]);
+      else tongue_dn_ = tube_tongue(b1_, b2_, false, &e2d_of[1]);
     };
   });
-  if (tongue_up.IsNull() || tongue_dn.IsNull()) return {};
-  const double Ua1 = tongue_time(a1, true, true), Ua2 = tongue_time(a2, true, true);
-  const double Ub1 = tongue_time(b1, false, true), Ub2 = tongue_time(b2, false, true);
-  if (!(Ua1 > 0 && Ua2 > 0 && Ub1 < T && Ub2 < T)) return {};
-  // On the half balls: the part inside the neighbouring turn is bounded by the same curve as the
-  // tube's tongue (the ball meets that turn's tube there); its points are projected on the ball.
-  auto tube_point = [&](double v, bool up, bool end = false) {
-    return to_eigen(tb.tube->Value(tongue_time(v, up, end), v));
-  };
-  auto on_ball = [&](const Handle(Geom_BSplineSurface)& ball, const Eigen::Isometry3d& M, const Eigen::Vector3d& pole,
-                     const Eigen::Vector3d& y, double* u, double* v) {
-    // start from the angles about the ball's centre, then Gauss-Newton on the surface
-    const Eigen::Vector3d d = M.inverse() * y - c;
-    const double z = d.dot(pole);
-    *v = std::atan2(d.dot(tb.b0), d.dot(tb.n0));
-    if (*v < 0) *v += 2 * M_PI;
-    *u = std::atan2(z, (d - z * pole).norm());
-    for (int it = 0; it < 30; ++it) {
-      gp_Pnt P;
-      gp_Vec Su, Sv;
-      ball->D1(*u, *v, P, Su, Sv);
-      const Eigen::Vector3d e = to_eigen(P) - y, a = to_eigen(Su), bb = to_eigen(Sv);
-      Eigen::Matrix2d A;
-      A << a.dot(a), a.dot(bb), a.dot(bb), bb.dot(bb);
-      const Eigen::Vector2d step = A.ldlt().solve(Eigen::Vector2d(a.dot(e), bb.dot(e)));
-      *u -= step(0);
-      *v -= step(1);
-      if (step.norm() < 1e-13) break;
-    }
-    return (to_eigen(ball->Value(*u, *v)) - y).norm();
-  };
-  // the ball's tongue from the rim point at v = vs to the one at ve, along the tube's tongue
-  // (from tube v = ts to te, `up` for the tongue of the next turn)
-  auto ball_tongue = [&](const Handle(Geom_BSplineSurface)& ball, const Eigen::Isometry3d& M, const Eigen::Vector3d& pole,
-                         double vs, double ve, double ts, double te, bool up, double* umax, double* proj_err,
-                         double* e2d) {
-    // which end of the tube's tongue is the rim point at vs
-    const Eigen::Vector3d rs = to_eigen(ball->Value(0.0, vs));
-    if ((tube_point(te, up, true) - rs).norm() < (tube_point(ts, up, true) - rs).norm()) std::swap(ts, te);
-    // the projections meet the rim points within the fitting error: that difference is spread
-    // linearly along the curve so that its ends are the rim points
-    double bu, bv;
-    on_ball(ball, M, pole, tube_point(ts, up, true), &bu, &bv);
-    const Eigen::Vector2d d0 = Eigen::Vector2d(0.0, vs) - Eigen::Vector2d(bu, bv);
-    on_ball(ball, M, pole, tube_point(te, up, true), &bu, &bv);
-    const Eigen::Vector2d d1 = Eigen::Vector2d(0.0, ve) - Eigen::Vector2d(bu, bv);
-    *umax = 0;
-    return fit_pcurve(
-        [&](double ph) {
-          const double v = ts + (te - ts) * 0.5 * (1 - std::cos(ph));
-          double pu, pv;
-          *proj_err = std::max(*proj_err, on_ball(ball, M, pole, tube_point(v, up, ph == 0 || ph == M_PI), &pu, &pv));
-          const Eigen::Vector2d uv = Eigen::Vector2d(pu, pv) + d0 * (1 - ph / M_PI) + d1 * (ph / M_PI);
-          *umax = std::max(*umax, uv(0));
-          return Eigen::RowVector3d(uv(0), uv(1), 0.0);
-        },
-        0.5 * fit_tol / (2 * r), e2d);
-  };
-  const Eigen::Isometry3d MT = j.transform(T);
-  double umax_back = 0, umax_front = 0, proj_err_of[2] = {0, 0};
+  if (tongue_up_.IsNull() || tongue_dn_.IsNull()) return false;
+  Ua1_ = tongue_time(a1_, true, true), Ua2_ = tongue_time(a2_, true, true);
+  Ub1_ = tongue_time(b1_, false, true), Ub2_ = tongue_time(b2_, false, true);
+  if (!(Ua1_ > 0 && Ua2_ > 0 && Ub1_ < T_ && Ub2_ < T_)) return false;
+  const Eigen::Isometry3d MT = j_.transform(T_);
+  double proj_err_of[2] = {0, 0};
   // the start ball is covered by the next turn: the tube's tongue over [b1, b2] lies on it
-  Handle(Geom2d_BSplineCurve) back_tongue, front_tongue;
   parallel_for(2, [&]() -> std::function<void(std::size_t)> {
     return [&](std::size_t k) {
       if (k == 0)
-        back_tongue = ball_tongue(tb.back, Eigen::Isometry3d::Identity(), -tb.t0, a2, a1, b1, b2, false, &umax_back,
-                                  &proj_err_of[0], &e2d_of[2]);
+        back_tongue_ = ball_tongue(tb_.back, Eigen::Isometry3d::Identity(), -tb_.t0, a2_, a1_, b1_, b2_, false,
+                                   &umax_back_, &proj_err_of[0], &e2d_of[2]);
       else
-        front_tongue = ball_tongue(tb.front, MT, tb.t0, b2, b1, a1, a2, true, &umax_front, &proj_err_of[1],
-                                   &e2d_of[3]);
+        front_tongue_ = ball_tongue(tb_.front, MT, tb_.t0, b2_, b1_, a1_, a2_, true, &umax_front_, &proj_err_of[1],
+                                    &e2d_of[3]);
     };
   });
-  if (back_tongue.IsNull() || front_tongue.IsNull()) return {};
+  if (back_tongue_.IsNull() || front_tongue_.IsNull()) return false;
   const double proj_err = std::max(proj_err_of[0], proj_err_of[1]);
-  if (proj_err > 10 * tb.error + 1e-12 * size || umax_back >= 0.45 * M_PI || umax_front >= 0.45 * M_PI) return {};
-  const double e2d = *std::max_element(e2d_of, e2d_of + 4);
+  if (proj_err > 10 * tb_.error + 1e-12 * size_ || umax_back_ >= 0.45 * M_PI || umax_front_ >= 0.45 * M_PI)
+    return false;
+  e2d_ = *std::max_element(e2d_of, e2d_of + 4);
+  err_ += e2d_ * speed_;
+  return true;
+}
 
-  // Guard: on grids over the tube and the half balls, the points that other balls of the sweep
-  // cover are those the tongues cut away (points close to a tongue's curve are not compared). In
-  // four parts (the tube's grid in two halves, each half ball), run while the faces are built.
-  const double band = 1e-4 * r * r;
+// On grids over the tube and the half balls, the points that other balls of the sweep cover are
+// those the tongues cut away (points close to a tongue's curve are not compared). In four parts:
+// the tube's grid in two halves, each half ball.
+bool OverlapSweep::guard(std::size_t part) const {
+  const double band = 1e-4 * r_ * r_;
   auto cover = [&](const Eigen::Vector3d& x, double lo1, double hi1, double lo2, double hi2) {
     double d = 1e300;
-    if (hi1 > lo1) d = std::min(d, H.min_dist2(x, lo1, hi1, nullptr));
-    if (hi2 > lo2) d = std::min(d, H.min_dist2(x, lo2, hi2, nullptr));
-    return d - r * r;
+    if (hi1 > lo1) d = std::min(d, H_.min_dist2(x, lo1, hi1, nullptr));
+    if (hi2 > lo2) d = std::min(d, H_.min_dist2(x, lo2, hi2, nullptr));
+    return d - r_ * r_;
   };
   auto check_tube = [&](int iu0, int iu1) {
     for (int iu = iu0; iu <= iu1; ++iu)
       for (int iv = 0; iv < 48; ++iv) {
-        const double U = T * iu / 40, v = 2 * M_PI * (iv + 0.5) / 48;
-        const double k = cover(to_eigen(tb.tube->Value(U, v)), std::max(0.0, U + M_PI), std::min(T, U + 3 * M_PI),
-                               std::max(0.0, U - 3 * M_PI), std::min(T, U - M_PI));
+        const double U = T_ * iu / 40, v = 2 * M_PI * (iv + 0.5) / 48;
+        const double k = cover(to_eigen(tb_.tube->Value(U, v)), std::max(0.0, U + M_PI), std::min(T_, U + 3 * M_PI),
+                               std::max(0.0, U - 3 * M_PI), std::min(T_, U - M_PI));
         if (std::abs(k) < band) continue;
-        const bool cut = (v > a1 && v < a2 && U < tongue_time(v, true)) || (v > b1 && v < b2 && U > tongue_time(v, false));
+        const bool cut = (v > a1_ && v < a2_ && U < tongue_time(v, true)) ||
+                         (v > b1_ && v < b2_ && U > tongue_time(v, false));
         if ((k < 0) != cut) return false;
       }
     return true;
@@ -594,42 +651,39 @@ TopoDS_Shape ball_screw_sweep_overlap(const Eigen::Vector3d& c, double r, const 
       }
     return true;
   };
-  auto guard = [&](std::size_t part) {
-    switch (part) {
-      case 0: return check_tube(0, 20);
-      case 1: return check_tube(21, 40);
-      case 2: return check_ball(tb.back, back_tongue, up_lo, up_hi);
-      default: return check_ball(tb.front, front_tongue, T + dn_lo, T + dn_hi);
-    }
-  };
+  switch (part) {
+    case 0: return check_tube(0, 20);
+    case 1: return check_tube(21, 40);
+    case 2: return check_ball(tb_.back, back_tongue_, up_lo, up_hi);
+    default: return check_ball(tb_.front, front_tongue_, T_ + dn_lo, T_ + dn_hi);
+  }
+}
 
-  // Faces. Edges are built on each face from their parameter-plane curves; sewing joins them.
-  const double etol = std::max(Settings::resolution * size, 0.1 * fit_tol);
-  std::vector<TopoDS_Face> fs;
-  std::vector<int> rl;
-  auto face_of = [&](const Handle(Geom_Surface)& S, const std::vector<TopoDS_Edge>& edges) {
-    BRepBuilderAPI_MakeWire mw;
-    for (const auto& e : edges) {
-      if (e.IsNull()) return false;
-      mw.Add(e);
-      if (!mw.IsDone()) return false;
-    }
-    BRepBuilderAPI_MakeFace mf(S, mw.Wire(), true);
-    if (!mf.IsDone()) return false;
-    fs.push_back(mf.Face());
-    return true;
-  };
-  auto P = [](double x, double y) { return gp_Pnt2d(x, y); };
-  const double V = 2 * M_PI;
-  // The tube: its parameter rectangle [0, T] x [0, 2 pi] without the two tongues, in two faces split
-  // along v between the arcs (away from the seam), so that each line where the tube meets its next
-  // turn joins two different faces. Each face's boundary runs counterclockwise in (time, angle);
-  // OCCT's face maker turns the wire round where the exchanged parameters below mirror it.
-  const double vm = a2 < b1 ? 0.5 * (a2 + b1) : 0.5 * (b2 + a1);
-  // The faces' surface has the tube's parameters exchanged (u around the circle, v along the
-  // motion): OCCT's face integration runs an inner Gauss integral along u, from the face's lowest u
-  // to each point of the boundary lines along which v varies; this way those inner integrals cross
-  // the few spans of the circle instead of the many along the motion.
+/// A face on S bounded by `edges` (built on it from their parameter-plane curves) into fs.
+bool face_from_edges(const Handle(Geom_Surface)& S, const std::vector<TopoDS_Edge>& edges,
+                     std::vector<TopoDS_Face>& fs) {
+  BRepBuilderAPI_MakeWire mw;
+  for (const auto& e : edges) {
+    if (e.IsNull()) return false;
+    mw.Add(e);
+    if (!mw.IsDone()) return false;
+  }
+  BRepBuilderAPI_MakeFace mf(S, mw.Wire(), true);
+  if (!mf.IsDone()) return false;
+  fs.push_back(mf.Face());
+  return true;
+}
+
+// The tube: its parameter rectangle [0, T] x [0, 2 pi] without the two tongues, in two faces split
+// along v between the arcs (away from the seam), so that each line where the tube meets its next
+// turn joins two different faces. Each face's boundary runs counterclockwise in (time, angle);
+// OCCT's face maker turns the wire round where the exchanged parameters below mirror it. The faces'
+// surface has the tube's parameters exchanged (u around the circle, v along the motion): OCCT's face
+// integration runs an inner Gauss integral along u, from the face's lowest u to each point of the
+// boundary lines along which v varies; this way those inner integrals cross the few spans of the
+// circle instead of the many along the motion.
+bool OverlapSweep::tube_face(double vlo, double vhi, std::vector<TopoDS_Face>& fs, std::vector<int>& rl) const {
+  const double etol = std::max(Settings::resolution * size_, 0.1 * fit_tol_);
   auto Q = [](double x, double y) { return gp_Pnt2d(y, x); };
   auto exchanged = [](const Handle(Geom2d_BSplineCurve)& cv) {
     Handle(Geom2d_BSplineCurve) e = Handle(Geom2d_BSplineCurve)::DownCast(cv->Copy());
@@ -639,79 +693,103 @@ TopoDS_Shape ball_screw_sweep_overlap(const Eigen::Vector3d& c, double r, const 
     }
     return e;
   };
-  const Handle(Geom2d_BSplineCurve) tongue_dn_x = exchanged(tongue_dn), tongue_up_x = exchanged(tongue_up);
-  auto tube_face = [&](double vlo, double vhi) {
-    // a surface of its own: the faces share edges whose parameter lines differ (v = a2 here is v =
-    // b1 there), and edges with two parameter lines on one surface would read as seams
-    const Handle(Geom_BSplineSurface) tx = Handle(Geom_BSplineSurface)::DownCast(tb.tube->Copy());
-    tx->ExchangeUV();
-    const Handle(Geom_Surface) tube(tx);
-    std::vector<TopoDS_Edge> es{segment_on(tube, Q(0, vlo), Q(T, vlo), etol)};
-    double v = vlo;
-    if (b1 > vlo && b2 < vhi) {  // the previous turn's tongue hangs from u = T
-      es.push_back(segment_on(tube, Q(T, v), Q(T, b1), etol));
-      es.push_back(segment_on(tube, Q(T, b1), Q(Ub1, b1), etol));
-      es.push_back(edge_on(tube, tongue_dn_x, 0, M_PI, etol));
-      es.push_back(segment_on(tube, Q(Ub2, b2), Q(T, b2), etol));
-      v = b2;
-    }
-    es.push_back(segment_on(tube, Q(T, v), Q(T, vhi), etol));
-    es.push_back(segment_on(tube, Q(T, vhi), Q(0, vhi), etol));
-    v = vhi;
-    if (a1 > vlo && a2 < vhi) {  // the next turn's tongue stands on u = 0
-      es.push_back(segment_on(tube, Q(0, v), Q(0, a2), etol));
-      es.push_back(segment_on(tube, Q(0, a2), Q(Ua2, a2), etol));
-      es.push_back(edge_on(tube, tongue_up_x, 0, M_PI, etol));
-      es.push_back(segment_on(tube, Q(Ua1, a1), Q(0, a1), etol));
-      v = a1;
-    }
-    es.push_back(segment_on(tube, Q(0, v), Q(0, vlo), etol));
-    if (!face_of(tube, es)) return false;
-    rl.push_back(0);
-    return true;
-  };
-  // each half ball: a band from the rim to u_cut without its tongue, and the cap beyond
-  auto ball_faces = [&](const Handle(Geom_BSplineSurface)& ball, const Handle(Geom2d_BSplineCurve)& tongue,
-                        double v1, double v2, double umax, int role) {
-    const double uc = umax + 0.5 * (0.5 * M_PI - umax);
-    const Handle(Geom_Surface) S(ball);
-    if (!face_of(S, {segment_on(S, P(0, 0), P(uc, 0), etol), segment_on(S, P(uc, 0), P(uc, V), etol),
-                     segment_on(S, P(uc, V), P(0, V), etol), segment_on(S, P(0, V), P(0, v2), etol),
-                     edge_on(S, tongue, 0, M_PI, etol), segment_on(S, P(0, v1), P(0, 0), etol)}))
-      return false;
-    rl.push_back(role);
-    BRepBuilderAPI_MakeFace cap(S, uc, 0.5 * M_PI, 0, V, Settings::resolution * size);
-    if (!cap.IsDone()) return false;
-    fs.push_back(cap.Face());
-    rl.push_back(role);
-    return true;
-  };
-  err += e2d * speed;
+  // a surface of its own: the faces share edges whose parameter lines differ (v = a2 here is v =
+  // b1 there), and edges with two parameter lines on one surface would read as seams
+  const Handle(Geom_BSplineSurface) tx = Handle(Geom_BSplineSurface)::DownCast(tb_.tube->Copy());
+  tx->ExchangeUV();
+  const Handle(Geom_Surface) tube(tx);
+  std::vector<TopoDS_Edge> es{segment_on(tube, Q(0, vlo), Q(T_, vlo), etol)};
+  double v = vlo;
+  if (b1_ > vlo && b2_ < vhi) {  // the previous turn's tongue hangs from u = T
+    es.push_back(segment_on(tube, Q(T_, v), Q(T_, b1_), etol));
+    es.push_back(segment_on(tube, Q(T_, b1_), Q(Ub1_, b1_), etol));
+    es.push_back(edge_on(tube, exchanged(tongue_dn_), 0, M_PI, etol));
+    es.push_back(segment_on(tube, Q(Ub2_, b2_), Q(T_, b2_), etol));
+    v = b2_;
+  }
+  es.push_back(segment_on(tube, Q(T_, v), Q(T_, vhi), etol));
+  es.push_back(segment_on(tube, Q(T_, vhi), Q(0, vhi), etol));
+  v = vhi;
+  if (a1_ > vlo && a2_ < vhi) {  // the next turn's tongue stands on u = 0
+    es.push_back(segment_on(tube, Q(0, v), Q(0, a2_), etol));
+    es.push_back(segment_on(tube, Q(0, a2_), Q(Ua2_, a2_), etol));
+    es.push_back(edge_on(tube, exchanged(tongue_up_), 0, M_PI, etol));
+    es.push_back(segment_on(tube, Q(Ua1_, a1_), Q(0, a1_), etol));
+    v = a1_;
+  }
+  es.push_back(segment_on(tube, Q(0, v), Q(0, vlo), etol));
+  if (!face_from_edges(tube, es, fs)) return false;
+  rl.push_back(0);
+  return true;
+}
+
+// Each half ball: a band from the rim to u_cut without its tongue, and the cap beyond.
+bool OverlapSweep::ball_faces(const Handle(Geom_BSplineSurface)& ball, const Handle(Geom2d_BSplineCurve)& tongue,
+                              double v1, double v2, double umax, int role, std::vector<TopoDS_Face>& fs,
+                              std::vector<int>& rl) const {
+  const double etol = std::max(Settings::resolution * size_, 0.1 * fit_tol_);
+  auto P = [](double x, double y) { return gp_Pnt2d(x, y); };
+  const double V = 2 * M_PI;
+  const double uc = umax + 0.5 * (0.5 * M_PI - umax);
+  const Handle(Geom_Surface) S(ball);
+  if (!face_from_edges(S,
+                       {segment_on(S, P(0, 0), P(uc, 0), etol), segment_on(S, P(uc, 0), P(uc, V), etol),
+                        segment_on(S, P(uc, V), P(0, V), etol), segment_on(S, P(0, V), P(0, v2), etol),
+                        edge_on(S, tongue, 0, M_PI, etol), segment_on(S, P(0, v1), P(0, 0), etol)},
+                       fs))
+    return false;
+  rl.push_back(role);
+  BRepBuilderAPI_MakeFace cap(S, uc, 0.5 * M_PI, 0, V, Settings::resolution * size_);
+  if (!cap.IsDone()) return false;
+  fs.push_back(cap.Face());
+  rl.push_back(role);
+  return true;
+}
+
+TopoDS_Shape OverlapSweep::solid(std::vector<TopoDS_Face>* faces, std::vector<int>* roles) {
+  std::vector<TopoDS_Face> fs;
+  std::vector<int> rl;
+  const double vm = a2_ < b1_ ? 0.5 * (a2_ + b1_) : 0.5 * (b2_ + a1_);
   // Outwards on the first tube face: at mid-time, on the arc of the circle before both tongues'
   // arcs (v = 0 is the middle of the gap between them), away from the centre's helix.
   OutwardHint out;
   out.face = 0;
-  out.u = 0.5 * std::min(a1, b1);
-  out.v = 0.5 * T;
-  const Eigen::Vector3d away = to_eigen(tb.tube->Value(out.v, out.u)) - H.pos(out.v);
+  out.u = 0.5 * std::min(a1_, b1_);
+  out.v = 0.5 * T_;
+  const Eigen::Vector3d away = to_eigen(tb_.tube->Value(out.v, out.u)) - H_.pos(out.v);
   out.out = gp_Vec(away.x(), away.y(), away.z());
   // The faces and their sewing on one thread, the guard's parts on the other.
-  TopoDS_Shape solid;
+  TopoDS_Shape sewn;
   char guard_ok[4] = {0, 0, 0, 0};
   parallel_for(5, [&]() -> std::function<void(std::size_t)> {
     return [&](std::size_t task) {
       if (task > 0) {
         guard_ok[task - 1] = guard(task - 1);
-      } else if (tube_face(0, vm) && tube_face(vm, V) && ball_faces(tb.back, back_tongue, a1, a2, umax_back, 1) &&
-                 ball_faces(tb.front, front_tongue, b1, b2, umax_front, 2)) {
-        solid = sew_solid(fs, std::max(Settings::sewing_gap * size, 20 * err), &out);
+      } else if (tube_face(0, vm, fs, rl) && tube_face(vm, 2 * M_PI, fs, rl) &&
+                 ball_faces(tb_.back, back_tongue_, a1_, a2_, umax_back_, 1, fs, rl) &&
+                 ball_faces(tb_.front, front_tongue_, b1_, b2_, umax_front_, 2, fs, rl)) {
+        sewn = sew_solid(fs, std::max(Settings::sewing_gap * size_, 20 * err_), &out);
       }
     };
   });
-  if (solid.IsNull() || !std::all_of(guard_ok, guard_ok + 4, [](char ok) { return ok != 0; })) return {};
-  *fit_err = std::max(*fit_err, err);
+  if (sewn.IsNull() || !std::all_of(guard_ok, guard_ok + 4, [](char ok) { return ok != 0; })) return {};
   if (faces) *faces = fs;
   if (roles) *roles = rl;
+  return sewn;
+}
+
+}  // namespace
+
+TopoDS_Shape ball_screw_sweep_overlap(const Eigen::Vector3d& c, double r, const ScrewJoint& j, double T,
+                                      double fit_tol, double size, double* fit_err, std::vector<TopoDS_Face>* faces,
+                                      std::vector<int>* roles) {
+  if (j.type != JointType::Helical || j.pitch == 0) return {};
+  OverlapSweep sweep(c, r, j, T, fit_tol, size);
+  const std::optional<double> phase = sweep.seam_phase();
+  if (!phase || !sweep.tongues(*phase)) return {};
+  const TopoDS_Shape solid = sweep.solid(faces, roles);
+  if (solid.IsNull()) return {};
+  *fit_err = std::max(*fit_err, sweep.error());
   return solid;
 }
 
