@@ -23,9 +23,11 @@
 #include <TopoDS.hxx>
 #include <TopoDS_Wire.hxx>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <functional>
 #include <set>
 #include <sstream>
 
@@ -257,25 +259,12 @@ std::string sections_svg(const std::vector<Section>& secs, const std::string& ti
   return o.str();
 }
 
-std::string varieties_svg(const Shape& faces, const std::vector<int>& face_variety, const std::vector<Variety>& vars,
-                          const std::string& title, const VarietyDrawingOptions& options) {
-  // Projection: looking from `view_from` towards the origin, z up.
-  Eigen::Vector3d d(options.view_from[0], options.view_from[1], options.view_from[2]);
-  SWEEP_ASSERT(d.norm() > 0 && d.normalized().cross(Eigen::Vector3d::UnitZ()).norm() > 1e-6,
-               "view direction must be non-zero and not along z");
-  d.normalize();
-  const Eigen::Vector3d right = Eigen::Vector3d::UnitZ().cross(d).normalized(), up = d.cross(right);
-  // Colours: the drawn (last stage) varieties with faces take the first palette entries.
-  std::vector<int> slot(vars.size(), -1);
-  {
-    int next = 0;
-    for (int pass = 0; pass < 2; ++pass)
-      for (std::size_t i = 0; i < vars.size(); ++i)
-        if (slot[i] < 0 && (pass == 1 || (vars[i].final_stage && vars[i].faces > 0))) slot[i] = next++;
-  }
-  auto colour = [&](int id) { return id < 0 ? kGrey : palette(slot[std::size_t(id)]); };
+namespace {
 
-  // Mesh a copy (the caller's faces keep no triangulation of ours), coarser until small enough.
+/// The triangulation of a copy of the faces for a drawing, coarser until it has at most
+/// options.max_triangles triangles: the copy and its deflection.
+std::pair<TopoDS_Shape, double> meshed_for_drawing(const Shape& faces, const VarietyDrawingOptions& options) {
+  // (a copy: the caller's faces keep no triangulation of ours)
   TopoDS_Shape shape = BRepBuilderAPI_Copy(faces.shape, true, false).Shape();
   Bnd_Box box;
   BRepBndLib::Add(shape, box);
@@ -294,28 +283,40 @@ std::string varieties_svg(const Shape& faces, const std::vector<int>& face_varie
     if (tris <= options.max_triangles) break;
     defl *= 2;
   }
+  return {shape, defl};
+}
 
-  struct Drawn {
-    int variety;
-    double depth;
-    std::vector<std::array<Eigen::Vector2d, 2>> mesh, outline;
-  };
-  std::vector<Drawn> drawn;
+/// A parallel projection looking along -d (from d towards the origin), z up, and the box of what
+/// it projected.
+struct Projection {
+  Eigen::Vector3d d, right, up;
   double sx0 = 1e300, sy0 = 1e300, sx1 = -1e300, sy1 = -1e300;
-  auto project = [&](const gp_Pnt& p) {
+  explicit Projection(const Eigen::Vector3d& dir)
+      : d(dir), right(Eigen::Vector3d::UnitZ().cross(dir).normalized()), up(dir.cross(right)) {}
+  Eigen::Vector2d operator()(const gp_Pnt& p) {
     const Eigen::Vector3d x = to_eigen(p);
     const Eigen::Vector2d s(x.dot(right), -x.dot(up));
     sx0 = std::min(sx0, s.x()), sx1 = std::max(sx1, s.x()), sy0 = std::min(sy0, s.y()), sy1 = std::max(sy1, s.y());
     return s;
-  };
+  }
+};
+
+/// One face as drawn: its variety (-1 unknown), mean depth, mesh edges and outline, projected.
+struct DrawnFace {
+  int variety;
+  double depth;
+  std::vector<std::array<Eigen::Vector2d, 2>> mesh, outline;
+};
+
+/// The faces of the meshed shape projected, far faces first (near outlines are drawn over far ones).
+std::vector<DrawnFace> drawn_faces(const TopoDS_Shape& shape, const std::vector<int>& face_variety, int varieties,
+                                   double defl, Projection& project) {
+  std::vector<DrawnFace> drawn;
   std::size_t k = 0;
-  std::set<int> unknown_used;
   for (TopExp_Explorer ex(shape, TopAbs_FACE); ex.More(); ex.Next(), ++k) {
     const TopoDS_Face& f = TopoDS::Face(ex.Current());
-    Drawn dr;
-    dr.variety = k < face_variety.size() && face_variety[k] >= 0 && face_variety[k] < int(vars.size())
-                     ? face_variety[k]
-                     : -1;
+    DrawnFace dr;
+    dr.variety = k < face_variety.size() && face_variety[k] >= 0 && face_variety[k] < varieties ? face_variety[k] : -1;
     TopLoc_Location loc;
     Handle(Poly_Triangulation) t = BRep_Tool::Triangulation(f, loc);
     double depth = 0;
@@ -325,7 +326,7 @@ std::string varieties_svg(const Shape& faces, const std::vector<int>& face_varie
       for (int i = 1; i <= t->NbNodes(); ++i) {
         const gp_Pnt p = t->Node(i).Transformed(loc.Transformation());
         nodes[i] = project(p);
-        depth += to_eigen(p).dot(d), ++nd;
+        depth += to_eigen(p).dot(project.d), ++nd;
       }
       std::set<std::pair<int, int>> seen;
       for (int i = 1; i <= t->NbTriangles(); ++i) {
@@ -344,9 +345,64 @@ std::string varieties_svg(const Shape& faces, const std::vector<int>& face_varie
     }
     drawn.push_back(std::move(dr));
   }
+  std::stable_sort(drawn.begin(), drawn.end(), [](const DrawnFace& a, const DrawnFace& b) { return a.depth < b.depth; });
+  return drawn;
+}
+
+/// The legend: one entry per variety (id, type, stage, fixed parameters, what it is), and one for
+/// faces of unknown variety when there are any.
+void write_legend(std::ostream& o, const std::vector<Variety>& vars, const std::function<const char*(int)>& colour,
+                  double legend_x, double top, double row, bool any_unknown) {
+  o << "<g class=\"legend\">\n<text x=\"" << px(legend_x) << "\" y=\"" << px(top) << "\" font-size=\"13\">"
+    << "varieties (id, type, fixed parameters)</text>\n";
+  double y = top + 20;
+  auto fixed_text = [](const nlohmann::json& fixed) {
+    std::string s;
+    for (const auto& [key, val] : fixed.items())
+      s += (s.empty() ? "" : ", ") + key + " = " + (val.is_number() ? num(val.get<double>()) : val.dump());
+    return s.empty() ? std::string("none") : s;
+  };
+  for (std::size_t i = 0; i < vars.size(); ++i, y += row) {
+    const Variety& v = vars[i];
+    o << "<g class=\"legend-entry\" id=\"legend-v" << i + 1 << "\" data-variety=\"" << i + 1 << "\">"
+      << "<rect x=\"" << px(legend_x) << "\" y=\"" << px(y - 10) << "\" width=\"14\" height=\"14\" fill=\""
+      << colour(int(i)) << "\"" << (v.final_stage ? "" : " fill-opacity=\"0.3\"") << "/>"
+      << "<text x=\"" << px(legend_x + 20) << "\" y=\"" << px(y + 1) << "\">" << i + 1 << "  " << xml_escape(v.type)
+      << "  stage " << v.stage << ", fixed: " << xml_escape(fixed_text(v.fixed)) << (v.final_stage ? "" : " (not drawn)")
+      << "</text><text x=\"" << px(legend_x + 20) << "\" y=\"" << px(y + 13) << "\" font-size=\"10\" fill=\"#555\">"
+      << xml_escape(v.what) << "</text></g>\n";
+  }
+  if (any_unknown)
+    o << "<g class=\"legend-entry\" id=\"legend-unknown\"><rect x=\"" << px(legend_x) << "\" y=\"" << px(y - 10)
+      << "\" width=\"14\" height=\"14\" fill=\"" << kGrey << "\"/><text x=\"" << px(legend_x + 20) << "\" y=\""
+      << px(y + 1) << "\">variety unknown</text></g>\n";
+  o << "</g>\n";
+}
+
+}  // namespace
+
+std::string varieties_svg(const Shape& faces, const std::vector<int>& face_variety, const std::vector<Variety>& vars,
+                          const std::string& title, const VarietyDrawingOptions& options) {
+  // Projection: looking from `view_from` towards the origin, z up.
+  Eigen::Vector3d d(options.view_from[0], options.view_from[1], options.view_from[2]);
+  SWEEP_ASSERT(d.norm() > 0 && d.normalized().cross(Eigen::Vector3d::UnitZ()).norm() > 1e-6,
+               "view direction must be non-zero and not along z");
+  d.normalize();
+  // Colours: the drawn (last stage) varieties with faces take the first palette entries.
+  std::vector<int> slot(vars.size(), -1);
+  {
+    int next = 0;
+    for (int pass = 0; pass < 2; ++pass)
+      for (std::size_t i = 0; i < vars.size(); ++i)
+        if (slot[i] < 0 && (pass == 1 || (vars[i].final_stage && vars[i].faces > 0))) slot[i] = next++;
+  }
+  const std::function<const char*(int)> colour = [&](int id) { return id < 0 ? kGrey : palette(slot[std::size_t(id)]); };
+
+  const auto [shape, defl] = meshed_for_drawing(faces, options);
+  Projection project(d);
+  const std::vector<DrawnFace> drawn = drawn_faces(shape, face_variety, int(vars.size()), defl, project);
+  double sx0 = project.sx0, sy0 = project.sy0, sx1 = project.sx1, sy1 = project.sy1;
   if (sx0 > sx1) sx0 = sy0 = -1, sx1 = sy1 = 1;
-  // Far faces first, so near outlines are drawn over far ones.
-  std::stable_sort(drawn.begin(), drawn.end(), [](const Drawn& a, const Drawn& b) { return a.depth < b.depth; });
 
   const double area_w = 640, pad = 30, top = 60;
   const double scale = std::min(area_w / std::max(sx1 - sx0, 1e-12), 640.0 / std::max(sy1 - sy0, 1e-12));
@@ -394,30 +450,9 @@ std::string varieties_svg(const Shape& faces, const std::vector<int>& face_varie
     }
     o << "</g>\n";
   }
-  o << "</g>\n<g class=\"legend\">\n<text x=\"" << px(legend_x) << "\" y=\"" << px(top) << "\" font-size=\"13\">"
-    << "varieties (id, type, fixed parameters)</text>\n";
-  double y = top + 20;
-  auto fixed_text = [](const nlohmann::json& fixed) {
-    std::string s;
-    for (const auto& [key, val] : fixed.items())
-      s += (s.empty() ? "" : ", ") + key + " = " + (val.is_number() ? num(val.get<double>()) : val.dump());
-    return s.empty() ? std::string("none") : s;
-  };
-  for (std::size_t i = 0; i < vars.size(); ++i, y += row) {
-    const Variety& v = vars[i];
-    o << "<g class=\"legend-entry\" id=\"legend-v" << i + 1 << "\" data-variety=\"" << i + 1 << "\">"
-      << "<rect x=\"" << px(legend_x) << "\" y=\"" << px(y - 10) << "\" width=\"14\" height=\"14\" fill=\""
-      << colour(int(i)) << "\"" << (v.final_stage ? "" : " fill-opacity=\"0.3\"") << "/>"
-      << "<text x=\"" << px(legend_x + 20) << "\" y=\"" << px(y + 1) << "\">" << i + 1 << "  " << xml_escape(v.type)
-      << "  stage " << v.stage << ", fixed: " << xml_escape(fixed_text(v.fixed)) << (v.final_stage ? "" : " (not drawn)")
-      << "</text><text x=\"" << px(legend_x + 20) << "\" y=\"" << px(y + 13) << "\" font-size=\"10\" fill=\"#555\">"
-      << xml_escape(v.what) << "</text></g>\n";
-  }
-  if (any_unknown)
-    o << "<g class=\"legend-entry\" id=\"legend-unknown\"><rect x=\"" << px(legend_x) << "\" y=\"" << px(y - 10)
-      << "\" width=\"14\" height=\"14\" fill=\"" << kGrey << "\"/><text x=\"" << px(legend_x + 20) << "\" y=\""
-      << px(y + 1) << "\">variety unknown</text></g>\n";
-  o << "</g>\n</svg>\n";
+  o << "</g>\n";
+  write_legend(o, vars, colour, legend_x, top, row, any_unknown);
+  o << "</svg>\n";
   return o.str();
 }
 
