@@ -7,6 +7,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <random>
+#include <string>
 
 #include "base/internal.hpp"
 
@@ -44,7 +45,7 @@ void worst_errors(const Torus& t, const ScrewJoint& j, double tol, double* measu
   *reported = 0;
   int curves = 0;
   for (TopExp_Explorer ex(solid, TopAbs_FACE); ex.More(); ex.Next()) {
-    for (const auto& g : sweep::occt::grazing_curves(TopoDS::Face(ex.Current()), j, tol, 4.0)) {
+    for (const auto& g : sweep::occt::grazing_curves(TopoDS::Face(ex.Current()), sweep::VelocityField(j), tol, 4.0)) {
       ++curves;
       *reported = std::max(*reported, g.error);
       for (int k = 0; k <= 400; ++k) {
@@ -103,4 +104,66 @@ TEST_CASE("Grazing curves of random tori under the three joint types: reported e
     CHECK(measured <= 2 * std::max(reported, tol));
     CHECK(reported <= 20 * tol);
   }
+}
+
+TEST_CASE("Grazing curves under a path at one instant: a torus at its pose at t grazes where n . v(t) = 0",
+          "[grazing]") {
+  // A path that is no screw (it slides along a parabola while turning about a tilted axis): the
+  // velocity field at t is the twist at t. The torus, placed at its pose at t, grazes where the
+  // field is tangent to it; every point of the traced curves is checked against the exact torus and
+  // the twist, independently of the tracer.
+  const auto texpr = [](const std::string& s) { return sweep::Expr::parse(s, {"t"}); };
+  const sweep::Expr translate[3] = {texpr("2*t"), texpr("t^2"), texpr("0.5*t")};
+  const sweep::PathMotion path(0, 1, translate,
+                               {sweep::PathRotation{{texpr("0.3"), texpr("0.2"), texpr("1")}, texpr("1.5*t")}});
+  REQUIRE_FALSE(path.as_screw(2.0));
+  const Torus at_rest{Eigen::Vector3d(0.2, -0.1, 0.3), Eigen::Vector3d(0.3, -0.5, 0.8).normalized(), 1.2, 0.4};
+  for (double t : {0.25, 0.6}) {
+    const Eigen::Isometry3d M = path.transform(t);
+    const Torus placed{M * at_rest.centre, M.linear() * at_rest.axis, at_rest.major, at_rest.minor};
+    const TopoDS_Shape solid =
+        BRepPrimAPI_MakeTorus(gp_Ax2(gp_Pnt(placed.centre.x(), placed.centre.y(), placed.centre.z()),
+                                     gp_Dir(placed.axis.x(), placed.axis.y(), placed.axis.z())),
+                              placed.major, placed.minor)
+            .Shape();
+    const sweep::VelocityField field(path, t, 2.0);
+    const sweep::Twist twist = path.twist(t);
+    const double tol = 1e-7;
+    int points = 0;
+    for (TopExp_Explorer ex(solid, TopAbs_FACE); ex.More(); ex.Next())
+      for (const auto& g : sweep::occt::grazing_curves(TopoDS::Face(ex.Current()), field, tol, 4.0)) {
+        for (int k = 0; k <= 100; ++k) {
+          const gp_Pnt p = g.curve->Value(g.first + (g.last - g.first) * k / 100);
+          const Eigen::Vector3d x(p.X(), p.Y(), p.Z()), v = twist.at(x);
+          CHECK(surface_distance(placed, x) < 10 * tol);
+          // n . v / |v| vanishes to first order in the distance along the surface
+          CHECK(std::abs(normal(placed, x).dot(v.normalized())) < 1e-5);
+          ++points;
+        }
+      }
+    CHECK(points > 100);
+  }
+}
+
+TEST_CASE("Velocity fields: a joint's is its own, a screw stage's is the joint's, a path's is its twist",
+          "[grazing]") {
+  ScrewJoint j;
+  j.type = JointType::Helical;
+  j.point = Eigen::Vector3d(1, 2, -1);
+  j.direction = Eigen::Vector3d(0, 0.6, 0.8);
+  j.pitch = 0.3;
+  j.lo = 0;
+  j.hi = 2;
+  const Eigen::Vector3d x(0.4, -1.3, 2.2);
+  CHECK((sweep::VelocityField(j).at(x) - j.velocity(x)).norm() == 0);
+  CHECK((sweep::VelocityField(sweep::ScrewStage(j), 1.0, 3.0).at(x) - j.velocity(x)).norm() == 0);
+  CHECK(sweep::VelocityField(j).reach() == Approx(0.3 + std::sqrt(6.0)).epsilon(1e-15));
+  const auto texpr = [](const std::string& s) { return sweep::Expr::parse(s, {"t"}); };
+  const sweep::Expr translate[3] = {texpr("t"), texpr("t^2"), texpr("0")};
+  const sweep::PathMotion path(0, 1, translate, {sweep::PathRotation{{texpr("0"), texpr("0"), texpr("1")}, texpr("t")}});
+  const sweep::VelocityField field(path, 0.5, 1.0);
+  CHECK((field.at(x) - path.twist(0.5).at(x)).norm() < 1e-12);
+  // its twist at t = 0.5: omega = z, v = dp - omega x p = (1, 1, 0) - (-0.25, 0.5, 0) with
+  // p = (0.5, 0.25, 0): the axis passes omega x v = (-0.5, 1.25, 0) from the origin, without pitch
+  CHECK(field.reach() == Approx(std::hypot(0.5, 1.25)).epsilon(1e-9));
 }

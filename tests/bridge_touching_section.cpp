@@ -55,7 +55,7 @@ struct Case {
 /// copy) checked point by point, and its length against OCCT's section of the sweep with the face
 /// (*strays: OCCT's curves that lie on neither face).
 void check_touching(const Case& c, double tol, double size, int* edges_found, int* strays) {
-  const auto curves = grazing_curves(c.face, c.joint, 1e-7, size);
+  const auto curves = grazing_curves(c.face, VelocityField(c.joint), 1e-7, size);
   REQUIRE(!curves.empty());
   for (const auto& g : curves) {
     double err = 0;

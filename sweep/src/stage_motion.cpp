@@ -207,6 +207,24 @@ PoseJet ScrewStage::pose(double t) const {
   return P;
 }
 
+VelocityField::VelocityField(const ScrewJoint& joint) : screw_(joint) {}
+
+VelocityField::VelocityField(const StageMotion& motion, double t, double radius) {
+  if (const auto s = motion.as_screw(radius)) {
+    screw_ = s->joint;
+  } else {
+    twist_ = motion.twist(t);
+  }
+}
+
+double VelocityField::reach() const {
+  if (screw_) return std::abs(screw_->pitch) + screw_->point.norm();  // (the point a joint gives, on its axis)
+  const double w2 = twist_.omega.squaredNorm();
+  if (w2 == 0) return 0.0;
+  // the axis's point nearest the origin, omega x v / |omega|^2, and the pitch, omega . v / |omega|^2
+  return (twist_.omega.cross(twist_.v).norm() + std::abs(twist_.omega.dot(twist_.v))) / w2;
+}
+
 std::optional<ScrewSegment> ScrewStage::as_screw(double) const {
   if (!(joint_.hi > joint_.lo)) return std::nullopt;
   ScrewSegment s;

@@ -182,7 +182,7 @@ TopoDS_Shape split_at_grazing(const TopoDS_Shape& body, const ScrewJoint& j, dou
     }
   }
   for (TopExp_Explorer ex(body, TopAbs_FACE); ex.More(); ex.Next()) {
-    for (const auto& g : grazing_curves(TopoDS::Face(ex.Current()), j, fit_tol, size)) {
+    for (const auto& g : grazing_curves(TopoDS::Face(ex.Current()), VelocityField(j), fit_tol, size)) {
       tools.Append(grazing_edge(g, TopoDS::Face(ex.Current()), fit_tol).edge);
       *fit_error = std::max(*fit_error, g.error);
       ++*grazing;

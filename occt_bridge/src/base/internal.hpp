@@ -21,6 +21,7 @@
 #include "sweep/entity.hpp"
 #include "sweep/motion.hpp"
 #include "sweep/spec.hpp"
+#include "sweep/stage_motion.hpp"
 
 namespace sweep::occt {
 
@@ -72,9 +73,10 @@ struct GrazingCurve {
   double first = 0, last = 0;
   double error = 0;  ///< measured distance from the exact grazing curve (0 for lines and circles)
 };
-/// Grazing curves of a face under one screw joint (in the face's current position). Faces whose
-/// whole surface is grazing (they slide within themselves) give none.
-std::vector<GrazingCurve> grazing_curves(const TopoDS_Face& face, const ScrewJoint& joint, double tol,
+/// Grazing curves of a face (in its current position) under a velocity field: a screw joint's, or
+/// a stage motion's at the instant the face is at. Faces whose whole surface is grazing (they slide
+/// within themselves) give none.
+std::vector<GrazingCurve> grazing_curves(const TopoDS_Face& face, const VelocityField& velocity, double tol,
                                          double size);
 /// A grazing curve as an edge that splits its face: the curve in its canonical form (a line or a
 /// circle where it is one, within tol) and an edge whose tolerance covers how far the curve strays

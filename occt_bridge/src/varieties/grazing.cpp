@@ -1,4 +1,4 @@
-// Grazing curves: where the velocity of a screw motion is tangent to a face, g = n . v = 0.
+// Grazing curves: where a motion's velocity field at one instant is tangent to a face, g = n . v = 0.
 // The zero set is traced on a grid over the face's parameter domain (marching squares, every
 // point an exact root of g on a grid line or a crossing point of two branches), densified with
 // roots on lines across the chords, clipped to the face's trimmed domain (ending exactly on the
@@ -40,12 +40,12 @@ using UV = Eigen::Vector2d;
 
 struct Field {
   BRepAdaptor_Surface S;
-  ScrewJoint joint;
+  VelocityField velocity;
   double u0, u1, v0, v1;
   bool uper = false, vper = false;
   double uP = 0, vP = 0;
 
-  explicit Field(const TopoDS_Face& f, const ScrewJoint& j) : S(f), joint(j) {}
+  Field(const TopoDS_Face& f, const VelocityField& v) : S(f), velocity(v) {}
 
   /// n . v with the unit normal and the velocity of the point; 0 where the normal is undefined.
   double g(const UV& p) const {
@@ -64,7 +64,7 @@ struct Field {
       n = N.Magnitude();
       if (n < 1e-300) return 0.0;
     }
-    return N.Dot(to_vec(joint.velocity(to_eigen(P)))) / n;
+    return N.Dot(to_vec(velocity.at(to_eigen(P)))) / n;
   }
   gp_Pnt point(const UV& p) const { return S.Value(p.x(), p.y()); }
 };
@@ -234,9 +234,9 @@ std::optional<GrazingCurve> exact_line_or_circle(const std::vector<gp_Pnt>& q, d
   return std::nullopt;
 }
 
-std::vector<GrazingCurve> grazing_curves(const TopoDS_Face& face, const ScrewJoint& joint, double tol,
+std::vector<GrazingCurve> grazing_curves(const TopoDS_Face& face, const VelocityField& velocity, double tol,
                                          double size) {
-  Field F(face, joint);
+  Field F(face, velocity);
   BRepTools::UVBounds(face, F.u0, F.u1, F.v0, F.v1);
   ShapeAnalysis_Surface projector(BRep_Tool::Surface(face));
   // Periodic directions: trace over a window shifted by an irrational fraction of the period,
@@ -254,7 +254,7 @@ std::vector<GrazingCurve> grazing_curves(const TopoDS_Face& face, const ScrewJoi
     va += 0.3819660112501051 * F.vP * 0.1;
     vb = va + F.vP;
   }
-  const double vscale = size + std::abs(joint.pitch) + joint.point.norm();
+  const double vscale = size + velocity.reach();
   const ContourFunction g = [&F](const UV& p) { return F.g(p); };
   auto chains = contour_chains(g, ua, ub, va, vb, 61, 59, 1e-9 * vscale);  // none: the face slides within itself
   if (chains.empty()) return {};

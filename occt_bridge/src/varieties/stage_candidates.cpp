@@ -279,7 +279,7 @@ std::vector<TopoDS_Face> add_grazing_sweeps(const StageInput& in, double& fit_er
   for (int k = 1; k <= faces.Extent(); ++k) {
     const TopoDS_Face& face = TopoDS::Face(faces(k));
     TopTools_ListOfShape tools;
-    for (const auto& g : grazing_curves(face, in.j, in.fit_tol, in.esize)) {
+    for (const auto& g : grazing_curves(face, VelocityField(in.j), in.fit_tol, in.esize)) {
       fit_err = std::max(fit_err, g.error);
       const GrazingEdge ge = grazing_edge(g, face, in.fit_tol);
       tools.Append(ge.edge);

@@ -63,6 +63,25 @@ class StageMotion {
   Eigen::Vector3d body_point(double t, const Eigen::Vector3d& x) const;
 };
 
+/// The velocity field of a motion at one instant, in world coordinates: what grazing curves are
+/// traced against (n . v = 0).
+class VelocityField {
+ public:
+  /// A screw joint's field, the same at every joint value, as the joint computes it.
+  explicit VelocityField(const ScrewJoint& joint);
+  /// A stage motion's field at t: its screw's when the motion is one screw (as_screw(radius)), else
+  /// its twist at t.
+  VelocityField(const StageMotion& motion, double t, double radius);
+  Eigen::Vector3d at(const Eigen::Vector3d& x) const { return screw_ ? screw_->velocity(x) : twist_.at(x); }
+  /// The field's own length, for tolerances relative to the model: a joint's point plus its pitch,
+  /// a twist's axis distance from the origin plus its pitch (0 for a translation).
+  double reach() const;
+
+ private:
+  std::optional<ScrewJoint> screw_;
+  Twist twist_;
+};
+
 /// One screw joint over its range, after a fixed home pose: M(q) = exp(xi q) home.
 class ScrewStage : public StageMotion {
  public:
