@@ -172,3 +172,55 @@ TEST_CASE("Varieties: seed 001's rolling cylinder grazes as the seed's facts say
   }
   CHECK(std::asin(M_PI / 8) / M_PI == Approx(0.128).margin(1e-3));
 }
+
+TEST_CASE("Varieties: the grazing function's rate in t agrees with differences, and vanishes under a screw",
+          "[variety]") {
+  const EntityPtr cyl = entity_of(R"({"kind": "cylinder", "base": [1, 0.2, 0], "axis": [1, 0.3, 0.4], "radius": 0.4, "height": 1.5})");
+  const Patch& side = *cyl->faces()[0];
+  const Expr tr[3] = {texpr("t"), texpr("t^2"), texpr("sin(t)")};
+  const PathMotion path(0, 2, tr, {PathRotation{{texpr("0.3"), texpr("1"), texpr("t")}, texpr("0.7*t")}});
+  ScrewJoint j;
+  j.type = JointType::Helical;
+  j.point = Vector3d(0, 0.5, 0);
+  j.direction = Vector3d(0.2, 0, 1).normalized();
+  j.pitch = 0.3;
+  j.lo = 0;
+  j.hi = 4;
+  const ScrewStage screw(j);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> fu(side.lo(0), side.hi(0)), fv(side.lo(1), side.hi(1));
+  for (int k = 0; k < 40; ++k) {
+    const double u = fu(rng), v = fv(rng), t = 0.2 + 0.04 * k, h = 1e-5;
+    const double fd = (grazing_value(side, path.pose(t + h), u, v) - grazing_value(side, path.pose(t - h), u, v)) / (2 * h);
+    const double rate = grazing_rate(side, path.pose(t), u, v);
+    CHECK(rate == Approx(fd).margin(1e-7 * (1 + std::abs(fd))));
+    // the screw's field is the same in the body frame at every t (its n . w is of order 1 here)
+    CHECK(std::abs(grazing_rate(side, screw.pose(0.1 * k), u, v)) < 1e-12);
+  }
+}
+
+TEST_CASE("Varieties: the grazing set's drift carries a ball's great circle to the next instant's", "[variety]") {
+  const EntityPtr ball = entity_of(R"({"kind": "sphere", "center": [0.3, -0.2, 0.5], "radius": 0.8})");
+  const Patch& face = *ball->faces()[0];
+  const Expr tr[3] = {texpr("t"), texpr("t^2"), texpr("sin(t)")};
+  const PathMotion path(0, 2, tr, {PathRotation{{texpr("0.3"), texpr("1"), texpr("t")}, texpr("0.7*t")}});
+  const double t = 0.9, dt = 1e-3;
+  const PoseJet now = path.pose(t), next = path.pose(t + dt);
+  int moved = 0;
+  for (const auto& line : grazing_set(face, path, t).curves)
+    for (const Vector2d& s : line) {
+      // away from the poles, where the parametrization degenerates
+      if (std::abs(s.y()) > 1.3) continue;
+      const Vector2d d = grazing_drift(face, now, s.x(), s.y());
+      const double stay = grazing_value(face, next, s.x(), s.y());
+      const Vector2d s2 = s + dt * d;
+      const double carried = grazing_value(face, next, s2.x(), s2.y());
+      // left where it was, the point is off the next set to first order in dt; carried, to second
+      // (about dt^2 = 1e-6 here: compared where the set moves enough for that to be small)
+      if (std::abs(stay) > 1e-4) {
+        CHECK(std::abs(carried) < 0.05 * std::abs(stay));
+        ++moved;
+      }
+    }
+  CHECK(moved > 20);
+}

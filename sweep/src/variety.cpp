@@ -51,6 +51,21 @@ double grazing_value(const Patch& face, const PoseJet& P, double u, double v) {
   return p.xu.cross(p.xv).dot(w);
 }
 
+double grazing_rate(const Patch& face, const PoseJet& P, double u, double v) {
+  const PatchPoint p = face.eval(u, v);
+  const Vector3d dw = P.dR.transpose() * (P.dR * p.x + P.dp) + P.R.transpose() * (P.ddR * p.x + P.ddp);
+  return p.xu.cross(p.xv).dot(dw);
+}
+
+Vector2d grazing_drift(const Patch& face, const PoseJet& P, double u, double v, double h) {
+  const double hu = h * (face.hi(0) - face.lo(0)), hv = h * (face.hi(1) - face.lo(1));
+  const Vector2d grad((grazing_value(face, P, u + hu, v) - grazing_value(face, P, u - hu, v)) / (2 * hu),
+                      (grazing_value(face, P, u, v + hv) - grazing_value(face, P, u, v - hv)) / (2 * hv));
+  const double g2 = grad.squaredNorm();
+  if (!(g2 > 0)) return Vector2d::Zero();
+  return -grazing_rate(face, P, u, v) * grad / g2;
+}
+
 namespace {
 
 /// g over the face at one pose, read just inside the domain on the sides along which it vanishes

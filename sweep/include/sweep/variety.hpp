@@ -28,6 +28,17 @@ PatchPtr swept_curve(const PatchPtr& curve, std::shared_ptr<const StageMotion> m
 /// the body's frame. Its zero set is the face's grazing set at that instant.
 double grazing_value(const Patch& face, const PoseJet& pose, double u, double v);
 
+/// The rate of change in t of the grazing function at fixed face parameters (u, v):
+/// dg/dt = n . (dR^T (dR x + dp) + R^T (ddR x + ddp)). Zero under a screw motion at constant rate
+/// (its velocity field is the same in the body's frame at every t).
+double grazing_rate(const Patch& face, const PoseJet& pose, double u, double v);
+
+/// How a point of the grazing set moves across the face as t grows: the step in (u, v), normal to
+/// the set's curve, that keeps g = 0 to first order, -g_t grad g / |grad g|^2 (gradient in the face's
+/// parameters, by central differences of step h times the domain). Zero where g does not change
+/// with t; not defined where grad g vanishes (a crossing of two branches: then zero).
+Eigen::Vector2d grazing_drift(const Patch& face, const PoseJet& pose, double u, double v, double h = 1e-6);
+
 /// The grazing set of a face at one instant, in its parameter domain.
 struct GrazingSet {
   /// Polylines on which g vanishes (each point the root of g on an edge of the grid); a closed one
