@@ -21,6 +21,8 @@ struct Torus {
   double major, minor;
 };
 
+sweep::Expr texpr(const std::string& text) { return sweep::Expr::parse(text, {"t"}); }
+
 /// Distance of x from the torus surface, exactly.
 double surface_distance(const Torus& t, const Eigen::Vector3d& x) {
   const Eigen::Vector3d d = x - t.centre;
@@ -112,7 +114,6 @@ TEST_CASE("Grazing curves under a path at one instant: a torus at its pose at t 
   // velocity field at t is the twist at t. The torus, placed at its pose at t, grazes where the
   // field is tangent to it; every point of the traced curves is checked against the exact torus and
   // the twist, independently of the tracer.
-  const auto texpr = [](const std::string& s) { return sweep::Expr::parse(s, {"t"}); };
   const sweep::Expr translate[3] = {texpr("2*t"), texpr("t^2"), texpr("0.5*t")};
   const sweep::PathMotion path(0, 1, translate,
                                {sweep::PathRotation{{texpr("0.3"), texpr("0.2"), texpr("1")}, texpr("1.5*t")}});
@@ -158,7 +159,6 @@ TEST_CASE("Velocity fields: a joint's is its own, a screw stage's is the joint's
   CHECK((sweep::VelocityField(j).at(x) - j.velocity(x)).norm() == 0);
   CHECK((sweep::VelocityField(sweep::ScrewStage(j), 1.0, 3.0).at(x) - j.velocity(x)).norm() == 0);
   CHECK(sweep::VelocityField(j).reach() == Approx(0.3 + std::sqrt(6.0)).epsilon(1e-15));
-  const auto texpr = [](const std::string& s) { return sweep::Expr::parse(s, {"t"}); };
   const sweep::Expr translate[3] = {texpr("t"), texpr("t^2"), texpr("0")};
   const sweep::PathMotion path(0, 1, translate, {sweep::PathRotation{{texpr("0"), texpr("0"), texpr("1")}, texpr("t")}});
   const sweep::VelocityField field(path, 0.5, 1.0);

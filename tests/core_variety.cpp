@@ -23,6 +23,24 @@ EntityPtr entity_of(const std::string& entity_json) {
   return make_entity(parse_spec(text, "").entity);
 }
 
+/// A path that is no screw: along (t, t^2, sin t) while turning about an axis that tilts with t.
+PathMotion wandering_path() {
+  const Expr tr[3] = {texpr("t"), texpr("t^2"), texpr("sin(t)")};
+  return PathMotion(0, 2, tr, {PathRotation{{texpr("0.3"), texpr("1"), texpr("t")}, texpr("0.7*t")}});
+}
+
+/// A screw about a tilted axis, q in [0, 4].
+ScrewJoint tilted_screw() {
+  ScrewJoint j;
+  j.type = JointType::Helical;
+  j.point = Vector3d(0, 0.5, 0);
+  j.direction = Vector3d(0.2, 0, 1).normalized();
+  j.pitch = 0.3;
+  j.lo = 0;
+  j.hi = 4;
+  return j;
+}
+
 /// Seed 001's motion: x -> (0, 4t, 0) + R_x(pi t) x, t in [0, 1].
 std::shared_ptr<const StageMotion> rolling() {
   const Expr tr[3] = {texpr("0"), texpr("4*t"), texpr("0")};
@@ -99,8 +117,7 @@ TEST_CASE("Varieties: moved copies and swept curves have the motion's points and
 TEST_CASE("Varieties: a ball's grazing set is the great circle normal to its centre's velocity", "[variety]") {
   const Vector3d c(0.3, -0.2, 0.5);
   const EntityPtr ball = entity_of(R"({"kind": "sphere", "center": [0.3, -0.2, 0.5], "radius": 0.8})");
-  const Expr tr[3] = {texpr("t"), texpr("t^2"), texpr("sin(t)")};
-  const PathMotion path(0, 2, tr, {PathRotation{{texpr("0.3"), texpr("1"), texpr("t")}, texpr("0.7*t")}});
+  const PathMotion path = wandering_path();
   for (double t : {0.2, 1.1, 1.9}) {
     const PoseJet P = path.pose(t);
     const Vector3d w = P.R.transpose() * (P.dR * c + P.dp);  // the centre's velocity, body frame
@@ -119,14 +136,7 @@ TEST_CASE("Varieties: a ball's grazing set is the great circle normal to its cen
 
 TEST_CASE("Varieties: under a screw the grazing set stays on the same body curves", "[variety]") {
   const EntityPtr cyl = entity_of(R"({"kind": "cylinder", "base": [1, 0.2, 0], "axis": [1, 0.3, 0.4], "radius": 0.4, "height": 1.5})");
-  ScrewJoint j;
-  j.type = JointType::Helical;
-  j.point = Vector3d(0, 0.5, 0);
-  j.direction = Vector3d(0.2, 0, 1).normalized();
-  j.pitch = 0.3;
-  j.lo = 0;
-  j.hi = 4;
-  const ScrewStage screw(j);
+  const ScrewStage screw(tilted_screw());
   const Patch& side = *cyl->faces()[0];
   const std::vector<Vector3d> early = grazing_points(side, screw, 0.5);
   REQUIRE(early.size() > 20);
@@ -177,16 +187,8 @@ TEST_CASE("Varieties: the grazing function's rate in t agrees with differences, 
           "[variety]") {
   const EntityPtr cyl = entity_of(R"({"kind": "cylinder", "base": [1, 0.2, 0], "axis": [1, 0.3, 0.4], "radius": 0.4, "height": 1.5})");
   const Patch& side = *cyl->faces()[0];
-  const Expr tr[3] = {texpr("t"), texpr("t^2"), texpr("sin(t)")};
-  const PathMotion path(0, 2, tr, {PathRotation{{texpr("0.3"), texpr("1"), texpr("t")}, texpr("0.7*t")}});
-  ScrewJoint j;
-  j.type = JointType::Helical;
-  j.point = Vector3d(0, 0.5, 0);
-  j.direction = Vector3d(0.2, 0, 1).normalized();
-  j.pitch = 0.3;
-  j.lo = 0;
-  j.hi = 4;
-  const ScrewStage screw(j);
+  const PathMotion path = wandering_path();
+  const ScrewStage screw(tilted_screw());
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> fu(side.lo(0), side.hi(0)), fv(side.lo(1), side.hi(1));
   for (int k = 0; k < 40; ++k) {
@@ -202,8 +204,7 @@ TEST_CASE("Varieties: the grazing function's rate in t agrees with differences, 
 TEST_CASE("Varieties: the grazing set's drift carries a ball's great circle to the next instant's", "[variety]") {
   const EntityPtr ball = entity_of(R"({"kind": "sphere", "center": [0.3, -0.2, 0.5], "radius": 0.8})");
   const Patch& face = *ball->faces()[0];
-  const Expr tr[3] = {texpr("t"), texpr("t^2"), texpr("sin(t)")};
-  const PathMotion path(0, 2, tr, {PathRotation{{texpr("0.3"), texpr("1"), texpr("t")}, texpr("0.7*t")}});
+  const PathMotion path = wandering_path();
   const double t = 0.9, dt = 1e-3;
   const PoseJet now = path.pose(t), next = path.pose(t + dt);
   int moved = 0;

@@ -29,6 +29,15 @@ struct Seconds {
   }
 };
 
+/// Seconds per step (a JSON object from step to seconds): `s` added to step `key`.
+inline void add_step_seconds(nlohmann::json& seconds, const std::string& key, double s) {
+  seconds[key] = seconds.value(key, 0.0) + s;
+}
+/// Every step of `from` added to `into`.
+inline void merge_step_seconds(nlohmann::json& into, const nlohmann::json& from) {
+  for (auto it = from.begin(); it != from.end(); ++it) add_step_seconds(into, it.key(), it.value().get<double>());
+}
+
 /// What one solid stage did, for the report (write_run_record puts it there): the varieties and
 /// cells it made, candidates it restored (one count per round), whether it was built from the
 /// arrangement of cells, built again from every candidate, or healed, and its seconds per step.
@@ -39,7 +48,7 @@ struct StageRecord {
   bool from_cells = false, unpruned = false, healed = false;
   nlohmann::json seconds = nlohmann::json::object();
   /// Adds `s` seconds to step `key`.
-  void add_seconds(const std::string& key, double s) { seconds[key] = seconds.value(key, 0.0) + s; }
+  void add_seconds(const std::string& key, double s) { add_step_seconds(seconds, key, s); }
 };
 
 /// Candidate faces left out of the arrangement, with their varieties.

@@ -46,7 +46,7 @@ TopoDS_Shape entity_stage(const StageInput& in, const OrbitSolidPtr& orbit_entit
   // section; when that does not close either, the arrangement of cells is made instead.
   auto boundary = [&](const Settings& settings) {
     BoundarySweep b = boundary_sweep(in.body, j, T, stage_member, in.size, in.tol, settings, in.stage, in.joint_no);
-    for (auto it = b.seconds.begin(); it != b.seconds.end(); ++it) record.add_seconds(it.key(), it.value().get<double>());
+    merge_step_seconds(record.seconds, b.seconds);
     if (!b.solid.IsNull() && !closed_solids(b.solid) && !closed_solids(healed(b.solid))) {
       b.failure = "the pieces of its sweep boundary do not close";
       b.solid.Nullify();

@@ -62,7 +62,7 @@ struct ChainEntity {
 struct RunRecord {
   std::vector<StageRecord> stages;
   nlohmann::json seconds = nlohmann::json::object();
-  void add_seconds(const std::string& key, double s) { seconds[key] = seconds.value(key, 0.0) + s; }
+  void add_seconds(const std::string& key, double s) { add_step_seconds(seconds, key, s); }
   /// Whether a solid stage was built from the arrangement of cells.
   bool any_from_cells() const;
 };

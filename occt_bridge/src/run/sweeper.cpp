@@ -114,11 +114,7 @@ bool RunRecord::any_from_cells() const {
 }
 
 void write_run_record(const RunRecord& record, Report& rep) {
-  const auto add_seconds = [&rep](const nlohmann::json& seconds) {
-    for (auto it = seconds.begin(); it != seconds.end(); ++it)
-      rep.seconds[it.key()] = rep.seconds.value(it.key(), 0.0) + it.value().get<double>();
-  };
-  add_seconds(record.seconds);
+  merge_step_seconds(rep.seconds, record.seconds);
   for (const StageRecord& s : record.stages) {
     rep.varieties += s.varieties;
     rep.cells += s.cells;
@@ -126,7 +122,7 @@ void write_run_record(const RunRecord& record, Report& rep) {
     if (s.unpruned) rep.unpruned_stages.push_back(s.stage);
     if (s.healed) rep.healed_stages.push_back(s.stage);
     for (int faces : s.restored) rep.restored_candidates.push_back({s.stage, faces});
-    add_seconds(s.seconds);
+    merge_step_seconds(rep.seconds, s.seconds);
   }
 }
 
@@ -238,11 +234,9 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
     rep.status = "failed";
     rep.message = std::string("OCCT: ") + (f.GetMessageString() ? f.GetMessageString() : "failure") + " (after: " +
                   last_step + ")";
-    res.shape.reset();
   } catch (const ComputeError& e) {
     rep.status = "failed";
     rep.message = e.what();
-    res.shape.reset();
   }
   write_run_record(record, rep);
   rep.seconds_total = since(t_start);

@@ -398,6 +398,8 @@ class OverlapSweep {
   double error() const { return err_; }
 
  private:
+  /// The tolerance of the faces' edges, built from their parameter-plane curves.
+  double edge_tol() const { return std::max(Settings::resolution * size_, 0.1 * fit_tol_); }
   double covered_up(const Eigen::Vector3d& x) const { return H_.min_dist2(x, up_lo, up_hi, nullptr) - r_ * r_; }
   double covered_dn(const Eigen::Vector3d& x) const { return H_.min_dist2(x, dn_lo, dn_hi, nullptr) - r_ * r_; }
   Eigen::Vector3d start_row(double v) const { return to_eigen(tb_.tube->Value(0.0, v)); }
@@ -683,7 +685,7 @@ bool face_from_edges(const Handle(Geom_Surface)& S, const std::vector<TopoDS_Edg
 // boundary lines along which v varies; this way those inner integrals cross the few spans of the
 // circle instead of the many along the motion.
 bool OverlapSweep::tube_face(double vlo, double vhi, std::vector<TopoDS_Face>& fs, std::vector<int>& rl) const {
-  const double etol = std::max(Settings::resolution * size_, 0.1 * fit_tol_);
+  const double etol = edge_tol();
   auto Q = [](double x, double y) { return gp_Pnt2d(y, x); };
   auto exchanged = [](const Handle(Geom2d_BSplineCurve)& cv) {
     Handle(Geom2d_BSplineCurve) e = Handle(Geom2d_BSplineCurve)::DownCast(cv->Copy());
@@ -727,7 +729,7 @@ bool OverlapSweep::tube_face(double vlo, double vhi, std::vector<TopoDS_Face>& f
 bool OverlapSweep::ball_faces(const Handle(Geom_BSplineSurface)& ball, const Handle(Geom2d_BSplineCurve)& tongue,
                               double v1, double v2, double umax, int role, std::vector<TopoDS_Face>& fs,
                               std::vector<int>& rl) const {
-  const double etol = std::max(Settings::resolution * size_, 0.1 * fit_tol_);
+  const double etol = edge_tol();
   auto P = [](double x, double y) { return gp_Pnt2d(x, y); };
   const double V = 2 * M_PI;
   const double uc = umax + 0.5 * (0.5 * M_PI - umax);
