@@ -52,7 +52,8 @@ TopoDS_Shape primitive_from_patches(const Entity& entity);
 /// Fits a B-spline surface to exact(fu, fv), fu and fv fractions in [0, 1], on an (n+1)^2 grid, n
 /// doubling from n0 to nmax until the distance measured between grid points is at most tol
 /// (approximation tolerance approx_tol). The surface's parameters are uniform in the fractions.
-/// Returns null when no fit succeeds; *err receives the measured error of the surface returned.
+/// Returns the fit with the smallest measured error (a finer grid can fit worse between its
+/// points), null when no fit succeeds; *err receives the measured error of the surface returned.
 Handle(Geom_BSplineSurface) fit_grid_surface(const std::function<gp_Pnt(double, double)>& exact, double tol,
                                              double approx_tol, int n0, int nmax, double* err);
 
@@ -90,7 +91,8 @@ GrazingEdge grazing_edge(const GrazingCurve& g, const TopoDS_Face& face, double 
 
 /// Faces swept by curve `c` (on [first,last]) under `joint` for q in [0, T]: exact surfaces of
 /// revolution / extrusion, fitted B-spline surfaces for helical motions; split into pieces that do
-/// not overlap themselves. `fit_error` is raised to the largest measured fitting error.
+/// not overlap themselves, and a helical piece that no grid fits to `tol` into pieces of the curve.
+/// `fit_error` is raised to the largest measured fitting error.
 std::vector<TopoDS_Face> sweep_curve(const Handle(Geom_Curve)& c, double first, double last,
                                      const ScrewJoint& joint, double T, double tol, double* fit_error);
 

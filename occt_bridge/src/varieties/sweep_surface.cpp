@@ -17,6 +17,7 @@
 #include <TopExp_Explorer.hxx>
 #include <TopoDS.hxx>
 #include <GeomAPI_PointsToBSplineSurface.hxx>
+#include <GeomAdaptor_Surface.hxx>
 #include <Geom_BSplineSurface.hxx>
 #include <Geom_SurfaceOfLinearExtrusion.hxx>
 #include <Geom_SurfaceOfRevolution.hxx>
@@ -33,6 +34,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 #include "base/internal.hpp"
 #include "sweep/error.hpp"
@@ -476,6 +478,39 @@ std::vector<double> axis_crossings(const Handle(Geom_Curve)& c, double first, do
   return cuts;
 }
 
+namespace {
+
+/// How many times a helical piece's curve span may be halved when no grid fits it to tolerance.
+constexpr int kMaxHelicalSplits = 4;
+
+/// The face swept by c on [s0, s1] under the screw for q in [q0, q1], fitted on a grid of exact
+/// points; a span that no grid fits to `tol` is halved and each half fitted on its own.
+void helical_piece(const Handle(Geom_Curve)& c, double s0, double s1, const ScrewJoint& j, double q0, double q1,
+                   double tol, int depth, std::vector<TopoDS_Face>& out, double* fit_error) {
+  // (the grid runs through q at fixed s: the curve point is evaluated once per s)
+  double last_fs = std::numeric_limits<double>::quiet_NaN();
+  Eigen::Vector3d p;
+  auto exact = [&](double fs, double fq) {
+    if (fs != last_fs) p = to_eigen(c->Value(s0 + (s1 - s0) * fs)), last_fs = fs;
+    return to_pnt(j.transform(q0 + (q1 - q0) * fq) * p);
+  };
+  double err = 0;
+  const Handle(Geom_BSplineSurface) best = fit_grid_surface(exact, tol, 0.05 * tol, 12, 96, &err);
+  if ((best.IsNull() || err > tol) && depth < kMaxHelicalSplits) {
+    const double mid = 0.5 * (s0 + s1);
+    helical_piece(c, s0, mid, j, q0, q1, tol, depth + 1, out, fit_error);
+    helical_piece(c, mid, s1, j, q0, q1, tol, depth + 1, out, fit_error);
+    return;
+  }
+  if (best.IsNull()) throw ComputeError("could not fit a helical swept face");
+  *fit_error = std::max(*fit_error, err);
+  double a0, a1, b0, b1;
+  best->Bounds(a0, a1, b0, b1);
+  out.push_back(make_face(best, a0, a1, b0, b1, tol));
+}
+
+}  // namespace
+
 std::vector<TopoDS_Face> sweep_curve(const Handle(Geom_Curve)& c, double first, double last,
                                      const ScrewJoint& j, double T, double tol, double* fit_error) {
   std::vector<TopoDS_Face> out;
@@ -540,21 +575,15 @@ std::vector<TopoDS_Face> sweep_curve(const Handle(Geom_Curve)& c, double first, 
     }
     return out;
   }
-  // Helical: fit each piece to tolerance on a grid of exact points T(q) c(s).
-  for (int k = 0; k < pieces; ++k) {
-    const double q0 = T * k / pieces, q1 = T * (k + 1) / pieces;
-    auto exact = [&](double fs, double fq) {
-      gp_Pnt p = c->Value(first + (last - first) * fs);
-      Eigen::Vector3d x = j.transform(q0 + (q1 - q0) * fq) * to_eigen(p);
-      return to_pnt(x);
-    };
-    double err = 0;
-    Handle(Geom_BSplineSurface) best = fit_grid_surface(exact, tol, 0.05 * tol, 12, 96, &err);
-    if (best.IsNull()) throw ComputeError("could not fit a helical swept face");
-    *fit_error = std::max(*fit_error, err);
-    double a0, a1, b0, b1;
-    best->Bounds(a0, a1, b0, b1);
-    out.push_back(make_face(best, a0, a1, b0, b1, tol));
+  // Helical: the first piece fitted to tolerance on a grid of exact points T(q) c(s); the k-th is
+  // the first carried by the screw through T k / pieces (T(q0 + q) = T(q0) T(q)).
+  std::vector<TopoDS_Face> first_piece;
+  helical_piece(c, first, last, j, 0, T / pieces, tol, 0, first_piece, fit_error);
+  out = first_piece;
+  for (int k = 1; k < pieces; ++k) {
+    const gp_Trsf screw = to_trsf(j.transform(T * k / pieces));
+    for (const TopoDS_Face& face : first_piece)
+      out.push_back(TopoDS::Face(BRepBuilderAPI_Transform(face, screw, true).Shape()));
   }
   return out;
 }
@@ -562,6 +591,7 @@ std::vector<TopoDS_Face> sweep_curve(const Handle(Geom_Curve)& c, double first, 
 Handle(Geom_BSplineSurface) fit_grid_surface(const std::function<gp_Pnt(double, double)>& exact, double tol,
                                              double approx_tol, int n0, int nmax, double* err) {
   Handle(Geom_BSplineSurface) best;
+  double best_err = std::numeric_limits<double>::infinity();
   for (int n = n0; n <= nmax; n *= 2) {
     TColgp_Array2OfPnt pts(1, n + 1, 1, n + 1);
     for (int a = 0; a <= n; ++a)
@@ -572,16 +602,17 @@ Handle(Geom_BSplineSurface) fit_grid_surface(const std::function<gp_Pnt(double, 
     Handle(Geom_BSplineSurface) s = fit.Surface();
     double a0, a1, b0, b1;
     s->Bounds(a0, a1, b0, b1);
+    const GeomAdaptor_Surface fitted(s);  // (evaluates through a cache of the span's polynomial)
     double e = 0;
     for (int a = 0; a < 2 * n; ++a)
       for (int b = 0; b < 2 * n; ++b) {
         const double fu = (a + 0.5) / (2 * n), fv = (b + 0.5) / (2 * n);
-        e = std::max(e, s->Value(a0 + (a1 - a0) * fu, b0 + (b1 - b0) * fv).Distance(exact(fu, fv)));
+        e = std::max(e, fitted.Value(a0 + (a1 - a0) * fu, b0 + (b1 - b0) * fv).Distance(exact(fu, fv)));
       }
-    best = s;
-    *err = e;
+    if (e < best_err) best = s, best_err = e;
     if (e <= tol) break;
   }
+  if (!best.IsNull()) *err = best_err;
   return best;
 }
 
