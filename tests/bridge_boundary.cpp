@@ -1,5 +1,12 @@
 // The solid built from the split faces of an arrangement that separate a set from its complement.
 #include <BOPAlgo_Builder.hxx>
+#include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepBuilderAPI_MakeSolid.hxx>
+#include <BRepBuilderAPI_Sewing.hxx>
+#include <BRep_Tool.hxx>
+#include <ShapeFix_Solid.hxx>
+#include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
+#include <TopTools_ListIteratorOfListOfShape.hxx>
 #include <BRepCheck_Analyzer.hxx>
 #include <BRepGProp.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
@@ -10,6 +17,7 @@
 #include <TopoDS.hxx>
 #include <catch2/catch.hpp>
 
+#include "arrangement/hole_fill.hpp"
 #include "base/internal.hpp"
 
 namespace {
@@ -131,4 +139,49 @@ TEST_CASE("Sewing: a solid is oriented by the outward hint when one is given, by
     REQUIRE_FALSE(s.IsNull());
     CHECK(volume(s) == Approx(6).epsilon(1e-12));
   }
+}
+
+TEST_CASE("Hole filling: the one face whose edges are the free edges of a sewn shell closes it, sewn in turned to match its neighbours") {
+  const TopoDS_Shape box = BRepPrimAPI_MakeBox(gp_Pnt(0.2, -0.1, 0.3), 1.0, 2.0, 0.5).Shape();
+  std::vector<TopoDS_Face> faces;
+  for (TopExp_Explorer ex(box, TopAbs_FACE); ex.More(); ex.Next()) faces.push_back(TopoDS::Face(ex.Current()));
+  REQUIRE(faces.size() == 6);
+  BRepBuilderAPI_Sewing sewing(1e-7);
+  for (std::size_t i = 1; i < faces.size(); ++i) sewing.Add(faces[i]);
+  sewing.Perform();
+  // candidates: a face of another box, the missing face turned over, and a face the hole's edges
+  // only partly bound
+  const TopoDS_Shape other = BRepPrimAPI_MakeBox(gp_Pnt(3, 3, 3), 1.0, 2.0, 0.5).Shape();
+  const TopoDS_Face away = TopoDS::Face(TopExp_Explorer(other, TopAbs_FACE).Current());
+  const TopoDS_Face half = BRepBuilderAPI_MakeFace(BRep_Tool::Surface(faces[0]), 0, 0.5, 0, 0.5, 1e-7).Face();
+  const std::vector<TopoDS_Face> dropped{away, TopoDS::Face(faces[0].Reversed()), half};
+  const std::vector<std::size_t> fill = sweep::occt::faces_filling_holes(dropped, sewing, 1e-7);
+  REQUIRE(fill == std::vector<std::size_t>{1});
+  BRepBuilderAPI_Sewing closing(1e-7);
+  for (std::size_t i = 1; i < faces.size(); ++i) closing.Add(faces[i]);
+  closing.Add(dropped[1]);
+  closing.Perform();
+  CHECK(closing.NbFreeEdges() == 0);
+  const TopoDS_Shape shell = closing.SewedShape();
+  BRepBuilderAPI_MakeSolid ms;
+  for (TopExp_Explorer ex(shell, TopAbs_SHELL); ex.More(); ex.Next()) ms.Add(TopoDS::Shell(ex.Current()));
+  ShapeFix_Solid fix;
+  fix.Init(ms.Solid());
+  fix.Perform();
+  GProp_GProps props;
+  BRepGProp::VolumeProperties(fix.Solid(), props);
+  CHECK(props.Mass() == Approx(1.0).epsilon(1e-9));
+  CHECK(BRepCheck_Analyzer(fix.Solid()).IsValid());
+  // every face runs its shared edges opposite to its neighbour's
+  TopTools_IndexedDataMapOfShapeListOfShape faces_of_edge;
+  TopExp::MapShapesAndAncestors(shell, TopAbs_EDGE, TopAbs_FACE, faces_of_edge);
+  int same = 0;
+  for (int k = 1; k <= faces_of_edge.Extent(); ++k) {
+    std::vector<TopAbs_Orientation> o;
+    for (TopTools_ListIteratorOfListOfShape it(faces_of_edge(k)); it.More(); it.Next())
+      for (TopExp_Explorer ex(it.Value(), TopAbs_EDGE); ex.More(); ex.Next())
+        if (ex.Current().IsSame(faces_of_edge.FindKey(k))) o.push_back(ex.Current().Orientation());
+    if (o.size() == 2 && o[0] == o[1]) ++same;
+  }
+  CHECK(same == 0);
 }

@@ -31,7 +31,7 @@ double largest_gap(const std::vector<TopoDS_Face>& faces, const Handle(Geom_Curv
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> unit(0, 1);
   double gap = 0;
-  for (int k = 0; k < 60; ++k) {
+  for (int k = 0; k < 30; ++k) {
     const gp_Pnt p = c->Value(f + (l - f) * unit(rng));
     const Eigen::Vector3d x = j.transform(T * unit(rng)) * Eigen::Vector3d(p.X(), p.Y(), p.Z());
     BRepExtrema_DistShapeShape d(BRepBuilderAPI_MakeVertex(gp_Pnt(x.x(), x.y(), x.z())).Vertex(), all);

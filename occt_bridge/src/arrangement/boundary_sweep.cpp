@@ -1,5 +1,6 @@
 // One stage built from its sweep boundary (see boundary_sweep.hpp).
 #include "arrangement/boundary_sweep.hpp"
+#include "arrangement/hole_fill.hpp"
 
 #include <BRepAdaptor_Surface.hxx>
 #include <BRepAlgoAPI_BuilderAlgo.hxx>
@@ -36,6 +37,7 @@
 #include <gp_Sphere.hxx>
 
 #include <algorithm>
+#include <memory>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -829,30 +831,59 @@ void dump_boundary(const char* dir, const std::vector<Candidate>& cands, const s
   BRepTools::Write(tl, (std::string(dir) + "/sections.brep").c_str());
 }
 
-/// Step 6: the kept pieces, oriented outward, sewn into the solid (c.out.solid).
-void sew_kept(const std::vector<Piece>& all, const std::vector<int>& keep, BoundaryContext& c) {
+/// Step 6: the kept pieces, oriented outward, sewn into the solid (c.out.solid); a hole of the
+/// sewn pieces that one dropped piece fills exactly is filled with it.
+void sew_kept(const std::vector<Piece>& all, std::vector<int> keep, BoundaryContext& c) {
   const double size = c.size;
   BoundarySweep& out = c.out;
   // 6. The kept pieces, oriented outward, sewn into a solid.
   const auto t_sew = Clock::now();
-  BRepBuilderAPI_Sewing sewing(std::max(Settings::sewing_gap * size, 10 * out.fit_error));
-  int kept = 0;
-  for (std::size_t i = 0; i < all.size(); ++i) {
-    if (keep[i] == 0) continue;
-    TopoDS_Face f = all[i].sheet.IsNull() ? all[i].face : on_own_sheet(all[i].face, all[i].sheet);
-    if (keep[i] < 0) f = TopoDS::Face(f.Reversed());
-    sewing.Add(f);
-    out.candidate_faces.push_back(f);
-    out.candidate_ids.push_back(all[i].variety);
-    ++kept;
+  const double gap = std::max(Settings::sewing_gap * size, 10 * out.fit_error);
+  auto sew = [&](std::unique_ptr<BRepBuilderAPI_Sewing>& sewing) {
+    sewing = std::make_unique<BRepBuilderAPI_Sewing>(gap);
+    out.candidate_faces.clear();
+    out.candidate_ids.clear();
+    int kept = 0;
+    for (std::size_t i = 0; i < all.size(); ++i) {
+      if (keep[i] == 0) continue;
+      TopoDS_Face f = all[i].sheet.IsNull() ? all[i].face : on_own_sheet(all[i].face, all[i].sheet);
+      if (keep[i] < 0) f = TopoDS::Face(f.Reversed());
+      sewing->Add(f);
+      out.candidate_faces.push_back(f);
+      out.candidate_ids.push_back(all[i].variety);
+      ++kept;
+    }
+    out.kept = kept;
+    if (kept == 0) {
+      throw BoundaryFailure{"no piece of the candidate boundary separates the swept set from its complement"};
+    }
+    sewing->Perform(stop_range());
+    check_stop();
+  };
+  std::unique_ptr<BRepBuilderAPI_Sewing> sewing;
+  sew(sewing);
+  // (a sliver between two candidates that touch along a curve can be classified by samples on
+  // either side of their contact and dropped: the shell without it is open, with it closed; the
+  // verdict still judges the solid against the membership test)
+  std::vector<std::size_t> dropped;
+  std::vector<TopoDS_Face> dropped_faces;
+  for (std::size_t i = 0; i < all.size(); ++i)
+    if (keep[i] == 0) dropped.push_back(i), dropped_faces.push_back(all[i].face);
+  std::vector<std::size_t> fill;
+  for (std::size_t k : faces_filling_holes(dropped_faces, *sewing, gap)) fill.push_back(dropped[k]);
+  if (!fill.empty()) {
+    // kept only when the shell closes with them and no edge of it widens past the gap
+    for (std::size_t i : fill) keep[i] = 1;
+    sew(sewing);
+    double widest = 0;
+    for (TopExp_Explorer ex(sewing->SewedShape(), TopAbs_EDGE); ex.More(); ex.Next())
+      widest = std::max(widest, BRep_Tool::Tolerance(TopoDS::Edge(ex.Current())));
+    if (sewing->NbFreeEdges() > 0 || widest > gap) {
+      for (std::size_t i : fill) keep[i] = 0;
+      sew(sewing);
+    }
   }
-  out.kept = kept;
-  if (kept == 0) {
-    throw BoundaryFailure{"no piece of the candidate boundary separates the swept set from its complement"};
-  }
-  sewing.Perform(stop_range());
-  check_stop();
-  const TopoDS_Shape sewn = sewing.SewedShape();
+  const TopoDS_Shape sewn = sewing->SewedShape();
   BRepBuilderAPI_MakeSolid ms;
   int shells = 0;
   for (TopExp_Explorer ex(sewn, TopAbs_SHELL); ex.More(); ex.Next()) {

@@ -28,6 +28,7 @@
 #include <complex>
 
 #include "base/internal.hpp"
+#include "verdict/solid_rays.hpp"
 
 namespace sweep::occt {
 
@@ -127,34 +128,7 @@ struct TrajectoryMembership::Impl {
   Impl(const TopoDS_Shape& body, bool solid, const ScrewJoint& j, double T, double tol)
       : solid_(solid), j_(j), T_(T), tol_(tol) {
     if (solid_) cls_.Load(body);
-    Bnd_Box whole;
-    BRepBndLib::Add(body, whole);
-    back_ = whole.IsVoid() ? 1.0 : 0.01 * std::sqrt(whole.SquareExtent());
-    // One intersector per face, the analytic ones (intersected in closed form) first.
-    std::vector<std::pair<int, TopoDS_Face>> faces;
-    for (TopExp_Explorer ex(body, TopAbs_FACE); ex.More(); ex.Next()) {
-      const TopoDS_Face& f = TopoDS::Face(ex.Current());
-      const GeomAbs_SurfaceType type = BRepAdaptor_Surface(f, false).GetType();
-      const bool analytic = type == GeomAbs_Plane || type == GeomAbs_Cylinder || type == GeomAbs_Cone ||
-                            type == GeomAbs_Sphere;
-      faces.push_back({analytic ? 0 : 1, f});
-    }
-    std::stable_sort(faces.begin(), faces.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-    for (const auto& f : faces) {
-      FaceHit h;
-      BRepBndLib::Add(f.second, h.box);
-      h.box.SetGap(tol);
-      // points met are classified on the face itself, not within its edges' tolerances (which
-      // would take points off the face for points on it)
-      h.inter = std::make_unique<IntCurvesFace_Intersector>(f.second, tol, true, false);
-      h.surface = std::make_unique<BRepAdaptor_Surface>(f.second);
-      const BRepAdaptor_Surface S(f.second);
-      if (S.GetType() == GeomAbs_Torus) {
-        h.torus = std::make_unique<gp_Torus>(S.Torus());
-        h.fc = std::make_unique<BRepTopAdaptor_FClass2d>(f.second, tol);
-      }
-      inter_.push_back(std::move(h));
-    }
+    inter_ = face_hits(body, tol);
   }
   /// Whether x is swept: the trajectory meets the body's boundary, or lies wholly inside it (then
   /// so does y(0)). Either test can come first; the order that has been cheaper so far does (the
@@ -180,55 +154,9 @@ struct TrajectoryMembership::Impl {
     }
   };
 
-  /// Whether x is inside the body by a ray: the crossings of a half-line from x with the faces,
-  /// counted, and the first one's transition (leaving means x is inside). -1 when a direction
-  /// gives no clear answer (x on the boundary, a tangent crossing, count and transition at odds)
-  /// after a few tries.
-  int ray_inside(const Eigen::Vector3d& x) {
-    static const double dirs[3][3] = {{0.5773, 0.4719, 0.6663}, {-0.3981, 0.8377, -0.3738}, {0.7122, -0.2093, -0.6700}};
-    for (const auto& d : dirs) {
-      const gp_Lin line(to_pnt(x), gp_Dir(d[0], d[1], d[2]));
-      int crossings = 0;
-      double first = Precision::Infinite();
-      bool first_leaves = false, clear = true;
-      for (auto& h : inter_) {
-        if (h.box.IsOut(line)) continue;
-        h.inter->Perform(line, -tol_, Precision::Infinite());
-        if (!h.inter->IsDone()) continue;  // a face without extent in one direction
-        for (int k = 1; k <= h.inter->NbPnt(); ++k) {
-          const double w = h.inter->WParameter(k);
-          const IntCurveSurface_TransitionOnCurve tr = h.inter->Transition(k);
-          // a ray that grazes the face (within about 3 degrees) crosses it twice close together,
-          // and OCCT's intersector can find one crossing of the two (a point 2e-5 outside an
-          // extruded ellipse was called inside): no clear answer along it
-          gp_Pnt at;
-          gp_Vec du, dv;
-          h.surface->D1(h.inter->UParameter(k), h.inter->VParameter(k), at, du, dv);
-          const gp_Vec normal = du.Crossed(dv);
-          const bool grazing = normal.Magnitude() > 0 && std::abs(normal.Dot(line.Direction())) < 0.05 * normal.Magnitude();
-          if (w < tol_ || tr == IntCurveSurface_Tangent || grazing || h.inter->State(k) != TopAbs_IN) {
-            clear = false;
-            break;
-          }
-          ++crossings;
-          if (w < first) {
-            first = w;
-            first_leaves = tr == IntCurveSurface_Out;
-          }
-        }
-        if (!clear) break;
-      }
-      if (!clear) continue;
-      if (crossings == 0) return 0;
-      const bool by_count = crossings % 2 == 1;
-      if (by_count == first_leaves) return by_count ? 1 : 0;
-    }
-    return -1;
-  }
-
   bool inside_at_start(const Eigen::Vector3d& x) {
     const auto t0 = Clock::now();
-    const int by_ray = ray_inside(x);
+    const int by_ray = sweep::occt::ray_inside(inter_, x, tol_);
     if (by_ray >= 0) return classify_.record(t0, by_ray == 1);
     cls_.Perform(to_pnt(x), tol_);
     return classify_.record(t0, cls_.State() == TopAbs_IN);
@@ -280,17 +208,7 @@ struct TrajectoryMembership::Impl {
   bool solid_;
   ScrewJoint j_;
   double T_, tol_;
-  double back_ = 1.0;  ///< how far behind a point its rays start
   BRepClass3d_SolidClassifier cls_;
-  /// A face's box and its intersector, which samples the face once for every curve it meets.
-  struct FaceHit {
-    Bnd_Box box;
-    std::unique_ptr<IntCurvesFace_Intersector> inter;
-    std::unique_ptr<BRepAdaptor_Surface> surface;
-    // a torus face met by circles is intersected in closed form
-    std::unique_ptr<gp_Torus> torus;
-    std::unique_ptr<BRepTopAdaptor_FClass2d> fc;
-  };
   std::vector<FaceHit> inter_;
   Stats classify_, intersect_;
 };
@@ -300,6 +218,6 @@ TrajectoryMembership::TrajectoryMembership(const TopoDS_Shape& body, bool solid,
     : impl_(std::make_unique<Impl>(body, solid, j, T, tol)) {}
 TrajectoryMembership::~TrajectoryMembership() = default;
 bool TrajectoryMembership::operator()(const Eigen::Vector3d& x) { return (*impl_)(x); }
-int TrajectoryMembership::ray_inside(const Eigen::Vector3d& x) { return impl_->ray_inside(x); }
+int TrajectoryMembership::ray_inside(const Eigen::Vector3d& x) { return sweep::occt::ray_inside(impl_->inter_, x, impl_->tol_); }
 
 }  // namespace sweep::occt

@@ -1,5 +1,6 @@
 // The verdict on a computed solid against a membership test that does not use it.
 #include "verdict/verdict.hpp"
+#include "verdict/solid_rays.hpp"
 
 #include <BRepAdaptor_Curve.hxx>
 #include <BRepAdaptor_Surface.hxx>
@@ -208,7 +209,8 @@ class FirstMismatch {
 
 /// Uniform samples in the box, each classified against the triangulated solid (or, when `mesh` is
 /// null, by OCCT's classifier) and by the membership; samples within `band` of the triangulated
-/// boundary are left out.
+/// boundary are left out. Where the two disagree, rays against the exact faces give the solid's
+/// side; a disagreement stands when they agree with the triangles or give no clear answer.
 void judge_samples(const TopoDS_Shape& solid, const MeshIndex* mesh, const Eigen::AlignedBox3d& box,
                    const MemberTestMaker& member, double tol, double band, const Settings& settings,
                    FirstMismatch& first, VerdictResult& r) {
@@ -222,7 +224,8 @@ void judge_samples(const TopoDS_Shape& solid, const MeshIndex* mesh, const Eigen
     const MemberTest in_set = member();
     auto cls = std::make_shared<BRepClass3d_SolidClassifier>();
     if (!mesh) cls->Load(solid);
-    return [&, in_set, cls](std::size_t i) {
+    auto rays = std::make_shared<std::vector<FaceHit>>();  // (set up at this thread's first disagreement)
+    return [&, in_set, cls, rays](std::size_t i) {
       const Eigen::Vector3d& p = pts[i];
       bool a = false;
       if (mesh) {
@@ -246,6 +249,11 @@ void judge_samples(const TopoDS_Shape& solid, const MeshIndex* mesh, const Eigen
       }
       const bool b = m == 1;
       if (a != b) {
+        // a second opinion on the solid's side, from rays against its exact faces (a triangle
+        // or OCCT's classifier can be wrong where a ray meets an edge or a sliver)
+        if (rays->empty()) *rays = face_hits(solid, tol);
+        const int exact = ray_inside(*rays, p, tol);
+        if (exact >= 0 && (exact == 1) == b) return;
         ++mismatches;
         first.note(std::string("the point ") + point_text(p) +
                    (b ? " of the swept set lies outside the solid" : " lies in the solid but not in the swept set"));
