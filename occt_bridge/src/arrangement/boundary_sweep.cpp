@@ -872,13 +872,20 @@ void sew_kept(const std::vector<Piece>& all, std::vector<int> keep, BoundaryCont
   std::vector<std::size_t> fill;
   for (std::size_t k : faces_filling_holes(dropped_faces, *sewing, gap)) fill.push_back(dropped[k]);
   if (!fill.empty()) {
-    // kept only when the shell closes with them and no edge of it widens past the gap
+    // kept only when the shell closes with them and its widest edge is within the gap or narrower
+    // than before (an open shell whose sewing bridged a gap elsewhere keeps that gap when filled:
+    // the hole was not what kept it open)
+    auto widest_edge = [](const TopoDS_Shape& shape) {
+      double widest = 0;
+      for (TopExp_Explorer ex(shape, TopAbs_EDGE); ex.More(); ex.Next())
+        widest = std::max(widest, BRep_Tool::Tolerance(TopoDS::Edge(ex.Current())));
+      return widest;
+    };
+    const double widest_open = widest_edge(sewing->SewedShape());
     for (std::size_t i : fill) keep[i] = 1;
     sew(sewing);
-    double widest = 0;
-    for (TopExp_Explorer ex(sewing->SewedShape(), TopAbs_EDGE); ex.More(); ex.Next())
-      widest = std::max(widest, BRep_Tool::Tolerance(TopoDS::Edge(ex.Current())));
-    if (sewing->NbFreeEdges() > 0 || widest > gap) {
+    const double widest_filled = widest_edge(sewing->SewedShape());
+    if (sewing->NbFreeEdges() > 0 || (widest_filled > gap && widest_filled >= widest_open)) {
       for (std::size_t i : fill) keep[i] = 0;
       sew(sewing);
     }
