@@ -85,7 +85,7 @@ TEST_CASE("Helical sweeps of curves: a smooth curve sweeps one face per piece of
   double err = 0;
   const std::vector<TopoDS_Face> faces =
       occt::sweep_curve(c, c->FirstParameter(), c->LastParameter(), j, T, tol, &err);
-  CHECK(faces.size() == 2);  // (2.5 rad: two pieces, the second the first carried by the screw)
+  CHECK(faces.size() == 2);  // (2.5 rad: two pieces)
   CHECK(err <= tol);
   CHECK(largest_gap(faces, c, c->FirstParameter(), c->LastParameter(), j, T) <= tol + 1e-9);
 }

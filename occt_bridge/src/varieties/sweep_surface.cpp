@@ -575,16 +575,11 @@ std::vector<TopoDS_Face> sweep_curve(const Handle(Geom_Curve)& c, double first, 
     }
     return out;
   }
-  // Helical: the first piece fitted to tolerance on a grid of exact points T(q) c(s); the k-th is
-  // the first carried by the screw through T k / pieces (T(q0 + q) = T(q0) T(q)).
-  std::vector<TopoDS_Face> first_piece;
-  helical_piece(c, first, last, j, 0, T / pieces, tol, 0, first_piece, fit_error);
-  out = first_piece;
-  for (int k = 1; k < pieces; ++k) {
-    const gp_Trsf screw = to_trsf(j.transform(T * k / pieces));
-    for (const TopoDS_Face& face : first_piece)
-      out.push_back(TopoDS::Face(BRepBuilderAPI_Transform(face, screw, true).Shape()));
-  }
+  // Helical: each piece fitted to tolerance on a grid of exact points T(q) c(s). (Copies of the
+  // first piece carried by the screw would save the fits, but OCCT's mesher leaves their
+  // triangulation open and the verdict falls back to the slow classifier.)
+  for (int k = 0; k < pieces; ++k)
+    helical_piece(c, first, last, j, T * k / pieces, T * (k + 1) / pieces, tol, 0, out, fit_error);
   return out;
 }
 
