@@ -38,6 +38,7 @@
 
 #include "base/internal.hpp"
 #include "sweep/error.hpp"
+#include "sweep/settings.hpp"
 
 namespace sweep::occt {
 namespace {
@@ -480,9 +481,6 @@ std::vector<double> axis_crossings(const Handle(Geom_Curve)& c, double first, do
 
 namespace {
 
-/// How many times a helical piece's curve span may be halved when no grid fits it to tolerance.
-constexpr int kMaxHelicalSplits = 4;
-
 /// The face swept by c on [s0, s1] under the screw for q in [q0, q1], fitted on a grid of exact
 /// points; a span that no grid fits to `tol` is halved and each half fitted on its own.
 void helical_piece(const Handle(Geom_Curve)& c, double s0, double s1, const ScrewJoint& j, double q0, double q1,
@@ -495,8 +493,10 @@ void helical_piece(const Handle(Geom_Curve)& c, double s0, double s1, const Scre
     return to_pnt(j.transform(q0 + (q1 - q0) * fq) * p);
   };
   double err = 0;
-  const Handle(Geom_BSplineSurface) best = fit_grid_surface(exact, tol, 0.05 * tol, 12, 96, &err);
-  if ((best.IsNull() || err > tol) && depth < kMaxHelicalSplits) {
+  const Handle(Geom_BSplineSurface) best =
+      fit_grid_surface(exact, tol, Settings::helical_fit_approx * tol, Settings::helical_fit_grid_first,
+                       Settings::helical_fit_grid_last, &err);
+  if ((best.IsNull() || err > tol) && depth < Settings::helical_fit_splits) {
     const double mid = 0.5 * (s0 + s1);
     helical_piece(c, s0, mid, j, q0, q1, tol, depth + 1, out, fit_error);
     helical_piece(c, mid, s1, j, q0, q1, tol, depth + 1, out, fit_error);

@@ -44,6 +44,16 @@ struct Settings {
   /// the touching copy vanishes (off: OCCT's general section, which stalls or strays there).
   bool touching_sections = true;
 
+  // --- faces swept by a curve under a helical joint, fitted to grids of exact points
+  /// The grid's intervals per side: the first tried, doubled up to the last while the fit's
+  /// measured error exceeds its tolerance.
+  static constexpr int helical_fit_grid_first = 12;
+  static constexpr int helical_fit_grid_last = 96;
+  /// The fitter's own tolerance at the grid points (x the face's fit tolerance).
+  static constexpr double helical_fit_approx = 0.05;
+  /// How many times a span of the curve that no grid fits to the tolerance is halved.
+  static constexpr int helical_fit_splits = 4;
+
   // --- building a stage from the arrangement of its candidate faces
   /// A stage whose arrangement of the candidates left after pruning fails its checks is built
   /// again from every candidate when they are at most this many (the arrangement's time grows
