@@ -1,6 +1,4 @@
 // Point membership in a sweep by the paths of points: the trajectory test and its intersections.
-#include <BRepAdaptor_Surface.hxx>
-#include <BRepBndLib.hxx>
 #include <BRepClass3d_SolidClassifier.hxx>
 #include <BRepTopAdaptor_FClass2d.hxx>
 #include <Bnd_Box.hxx>
@@ -14,11 +12,7 @@
 #include <Geom_Line.hxx>
 #include <Geom_TrimmedCurve.hxx>
 #include <IntCurvesFace_Intersector.hxx>
-#include <Precision.hxx>
 #include <TColgp_Array1OfPnt.hxx>
-#include <TopExp_Explorer.hxx>
-#include <TopoDS.hxx>
-#include <gp_Lin.hxx>
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
