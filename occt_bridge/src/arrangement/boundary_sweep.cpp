@@ -1,6 +1,7 @@
 // One stage built from its sweep boundary (see boundary_sweep.hpp).
 #include "arrangement/boundary_sweep.hpp"
 #include "arrangement/hole_fill.hpp"
+#include "arrangement/split_tools.hpp"
 
 #include <BRepAdaptor_Surface.hxx>
 #include <BRepAlgoAPI_BuilderAlgo.hxx>
@@ -41,6 +42,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <cmath>
 #include <functional>
 #include <map>
@@ -48,6 +50,7 @@
 #include <optional>
 
 #include "faces/orbit_section.hpp"
+#include "verdict/solid_checks.hpp"
 #include "faces/section_refit.hpp"
 #include "faces/touching_section.hpp"
 #include "base/stop.hpp"
@@ -250,6 +253,20 @@ bool on_boundary(const TopoDS_Edge& e, const TopoDS_Face& f, double tol) {
   for (int k = 0; k < 5; ++k) {
     const gp_Pnt2d uv = pc->Value(first + (last - first) * (k + 0.5) / 5);
     if (fc.Perform(uv) != TopAbs_ON) return false;
+  }
+  return true;
+}
+
+/// Whether edge e lies on the surface of face f, within tol at five of its points.
+bool on_surface_of(const TopoDS_Edge& e, const TopoDS_Face& f, double tol) {
+  double first, last;
+  const Handle(Geom_Curve) c = BRep_Tool::Curve(e, first, last);
+  if (c.IsNull()) return false;
+  ShapeAnalysis_Surface S(BRep_Tool::Surface(f));
+  for (int k = 0; k < 5; ++k) {
+    const gp_Pnt p = c->Value(first + (last - first) * (k + 0.5) / 5);
+    S.ValueOfUV(p, 0.01 * tol);
+    if (S.Gap() > tol) return false;
   }
   return true;
 }
@@ -671,8 +688,14 @@ Crossings crossings_of(const std::vector<Candidate>& cands, BoundaryContext& c) 
       const TopoDS_Face& fa = cands[pairs[k].first].face;
       const TopoDS_Face& fb = cands[pairs[k].second].face;
       if (touch_job[k] >= 0 && touch_edges[touch_job[k]]) {
-        pair_edges[k] = *touch_edges[touch_job[k]];
-        pair_sides[k].assign(pair_edges[k].size(), 3);
+        // traced once for every face of the sweep: each splits the faces it lies on (a sweep cut
+        // where it passes through itself has faces on other sheets)
+        for (const auto& e : *touch_edges[touch_job[k]]) {
+          const int sides = (on_surface_of(e, fa, 10 * tol) ? 1 : 0) | (on_surface_of(e, fb, 10 * tol) ? 2 : 0);
+          if (sides == 0) continue;
+          pair_edges[k].push_back(e);
+          pair_sides[k].push_back(sides);
+        }
         pair_refit_error[k] = touch_error[touch_job[k]];
         return;
       }
@@ -736,26 +759,54 @@ std::vector<Piece> split_candidates(const std::vector<Candidate>& cands,
   // 5. Each candidate split by its curves; each piece kept when exactly one side is in the set.
   const auto t_split = Clock::now();
   std::vector<std::vector<TopoDS_Face>> split_faces(n);
-  std::vector<char> split_failed(n, 0);
-  parallel_for(n, [&]() -> std::function<void(std::size_t)> {
-    return [&](std::size_t i) {
-      if (tools[i].empty()) {
-        split_faces[i].push_back(cands[i].face);
-        return;
-      }
-      TopTools_ListOfShape tl;
-      TopTools_MapOfShape once;  // an edge shared by several pairs splits the face once
-      for (const auto& e : tools[i])
-        if (once.Add(e)) tl.Append(e);
-      const TopoDS_Shape split = split_by_edges(cands[i].face, tl, eps, SplitMode::NonDestructive);
-      if (split.IsNull()) {
-        split_failed[i] = 1;
-        return;
-      }
-      for (TopExp_Explorer ex(split, TopAbs_FACE); ex.More(); ex.Next())
-        split_faces[i].push_back(TopoDS::Face(ex.Current()));
-    };
-  });
+  std::vector<char> split_failed(n, 0), dangling(n, 0);
+  std::vector<double> widest(n, 0.0);  // the largest tolerance of a face's pieces' edges and vertices
+  auto split_each = [&](const std::vector<std::size_t>& which) {
+    parallel_for(which.size(), [&]() -> std::function<void(std::size_t)> {
+      return [&](std::size_t m) {
+        const std::size_t i = which[m];
+        split_faces[i].clear();
+        if (tools[i].empty()) {
+          split_faces[i].push_back(cands[i].face);
+          return;
+        }
+        TopTools_ListOfShape tl;
+        TopTools_MapOfShape once;  // an edge shared by several pairs splits the face once
+        for (const auto& e : tools[i])
+          if (once.Add(e)) tl.Append(e);
+        const TopoDS_Shape split = split_by_edges(cands[i].face, tl, eps, SplitMode::NonDestructive);
+        if (split.IsNull()) {
+          split_failed[i] = 1;
+          return;
+        }
+        for (TopExp_Explorer ex(split, TopAbs_FACE); ex.More(); ex.Next()) {
+          split_faces[i].push_back(TopoDS::Face(ex.Current()));
+          for (TopExp_Explorer ee(ex.Current(), TopAbs_EDGE); ee.More(); ee.Next())
+            dangling[i] = dangling[i] || ee.Current().Orientation() == TopAbs_INTERNAL;
+        }
+        widest[i] = max_tolerance(split);
+      };
+    });
+  };
+  std::vector<std::size_t> every(n);
+  std::iota(every.begin(), every.end(), std::size_t(0));
+  split_each(every);
+  // A face split again (one after another: the faces that a section splits share it):
+  // - whose pieces came out with tolerances far above the requested one, its curves given their
+  //   curves on the face (the splitter's own projection onto a surface of revolution or extrusion
+  //   of a spline can go wrong by a tenth of the model; where it is right, it is closer than a
+  //   fit, which a tolerance a few times the requested one does not show);
+  // - that keeps a section inside a piece (a curve that stops short of the curve it runs into,
+  //   within the tolerance), such ends joined to that curve.
+  std::vector<std::size_t> again;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (split_failed[i] || tools[i].empty()) continue;
+    const bool projected = c.settings.curves_on_faces && widest[i] > Settings::reprojected_split_ratio * c.tol &&
+                           add_curves_on_face(cands[i].face, tools[i], c.fit_tol, c.tol) > 0;
+    const bool bridged = dangling[i] && bridge_section_ends(cands[i].face, tools[i], c.tol) > 0;
+    if (projected || bridged) again.push_back(i);
+  }
+  if (!again.empty()) split_each(again);
   for (std::size_t i = 0; i < n; ++i)
     if (split_failed[i]) {
       throw BoundaryFailure{"a candidate face could not be split where others cross it"};
@@ -807,9 +858,11 @@ std::vector<int> classify_pieces(const std::vector<Piece>& all, const PointTestM
   return keep;
 }
 
-/// Diagnostics (SWEEP_DUMP_BOUNDARY=dir): candidates, pieces, kept pieces and sections as BREP files.
+/// Diagnostics (SWEEP_DUMP_BOUNDARY=dir): candidates, pieces, kept pieces and sections as BREP files
+/// (dir/general: the attempt with OCCT's sections where sweeps touch).
 void dump_boundary(const char* dir, const std::vector<Candidate>& cands, const std::vector<Piece>& all,
                    const std::vector<int>& keep, const std::vector<std::vector<TopoDS_Edge>>& pair_edges) {
+  std::filesystem::create_directories(dir);
   auto dump = [&](const std::string& name, const std::function<bool(std::size_t)>& take, std::size_t count,
                   const std::function<TopoDS_Shape(std::size_t)>& get) {
     TopoDS_Compound comp;
@@ -922,7 +975,9 @@ BoundarySweep boundary_sweep(const TopoDS_Shape& body, const ScrewJoint& j, doub
     const Crossings crossings = crossings_of(cands, c);
     const std::vector<Piece> pieces = split_candidates(cands, crossings.tools, c);
     const std::vector<int> keep = classify_pieces(pieces, member, c);
-    if (const char* dir = std::getenv("SWEEP_DUMP_BOUNDARY")) dump_boundary(dir, cands, pieces, keep, crossings.pair_edges);
+    if (const char* dir = std::getenv("SWEEP_DUMP_BOUNDARY"))
+      dump_boundary((std::string(dir) + (settings.touching_sections ? "" : "/general")).c_str(), cands, pieces, keep,
+                    crossings.pair_edges);
     sew_kept(pieces, keep, c);
   } catch (const BoundaryFailure& f) {
     out.failure = f.why;

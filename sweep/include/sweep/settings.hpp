@@ -35,6 +35,14 @@ struct Settings {
   /// How far off a piece of the candidate boundary its two sides are tested (x size), and again at
   /// twice that; a piece is kept when exactly one side is in the swept set.
   double classify_offset = 2e-6;
+  /// A face whose pieces come out of OCCT's splitter with tolerances above this many requested
+  /// tolerances is split again, its section curves given curves on it from points projected onto
+  /// its surface (off: the splitter's pieces are kept).
+  bool curves_on_faces = true;
+  static constexpr double reprojected_split_ratio = 100;
+  /// The most points a section curve is sampled at to fit its curve on a face it splits (doubling
+  /// from 16 until the fit is within the fitting tolerance).
+  static constexpr int curve_on_face_max_samples = 1024;
   /// Two candidate faces swept along a revolute or prismatic joint's orbits cross in circles or
   /// segments where their profiles cross: found so in the plane across the orbits (off: OCCT's
   /// general section of every pair).
