@@ -6,6 +6,8 @@
 #include <GC_MakeArcOfCircle.hxx>
 #include <Geom2d_Curve.hxx>
 #include <Geom_CylindricalSurface.hxx>
+#include <Geom_BSplineCurve.hxx>
+#include <Geom_SurfaceOfRevolution.hxx>
 #include <Geom_Surface.hxx>
 #include <Geom_ToroidalSurface.hxx>
 #include <TopExp_Explorer.hxx>
@@ -14,6 +16,9 @@
 #include <gp_Ax3.hxx>
 #include <gp_Circ.hxx>
 #include <gp_Pln.hxx>
+#include <TColStd_Array1OfInteger.hxx>
+#include <TColStd_Array1OfReal.hxx>
+#include <TColgp_Array1OfPnt.hxx>
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -108,4 +113,42 @@ TEST_CASE("Split tools: a curve off the surface gets no curve on it") {
   CHECK(sweep::occt::add_curves_on_face(face, {off}, 1e-9, 1e-6) == 0);
   double f, l;
   CHECK(BRep_Tool::CurveOnSurface(off, face, f, l).IsNull());
+}
+
+TEST_CASE("Split tools: a curve running past the end of a bounded surface fails no run") {
+  // the surface swept by the segment x = 1, 0 <= z <= 1 turned about the z axis (a spline
+  // profile, as a grazing curve's); lines along it run past its end circle z = 1, where
+  // projections stop at the end (points that project to one, which the interpolation refuses)
+  TColgp_Array1OfPnt poles(1, 2);
+  poles(1) = gp_Pnt(1, 0, 0);
+  poles(2) = gp_Pnt(1, 0, 1);
+  TColStd_Array1OfReal knots(1, 2);
+  knots(1) = 0;
+  knots(2) = 1;
+  TColStd_Array1OfInteger mults(1, 2);
+  mults.Init(2);
+  const Handle(Geom_Curve) profile = new Geom_BSplineCurve(poles, knots, mults, 1);
+  const Handle(Geom_Surface) S = new Geom_SurfaceOfRevolution(profile, gp::OZ());
+  const TopoDS_Face face = BRepBuilderAPI_MakeFace(S, 1e-9).Face();
+  for (double past : {1e-7, 1e-3, 0.5}) {
+    const TopoDS_Edge e = BRepBuilderAPI_MakeEdge(gp_Pnt(1, 0, 0.5), gp_Pnt(1, 0, 1 + past)).Edge();
+    int added = -1;
+    CHECK_NOTHROW(added = sweep::occt::add_curves_on_face(face, {e}, 1e-9, 1e-6));
+    double f, l;
+    const Handle(Geom2d_Curve) pc = BRep_Tool::CurveOnSurface(e, face, f, l);
+    CHECK(added == int(!pc.IsNull()));
+    if (pc.IsNull()) continue;
+    // a curve given is on the surface within what it was accepted at, and the edge says so
+    for (int k = 0; k <= 20; ++k) {
+      const double s = f + (l - f) * k / 20;
+      const gp_Pnt2d q = pc->Value(s);
+      double cf, cl;
+      const gp_Pnt on_edge = BRep_Tool::Curve(e, cf, cl)->Value(s);
+      CHECK(S->Value(q.X(), q.Y()).Distance(on_edge) <= std::max(1e-6, BRep_Tool::Tolerance(e)) + 1e-12);
+    }
+    CHECK(BRep_Tool::Tolerance(e) <= 1e-6 + 1e-12);
+  }
+  // a line within it gets its curve
+  const TopoDS_Edge within = BRepBuilderAPI_MakeEdge(gp_Pnt(1, 0, 0.25), gp_Pnt(1, 0, 0.75)).Edge();
+  CHECK(sweep::occt::add_curves_on_face(face, {within}, 1e-9, 1e-6) == 1);
 }

@@ -7,11 +7,12 @@
 #include <BRep_Tool.hxx>
 #include <Bnd_Box.hxx>
 #include <Geom2dAPI_Interpolate.hxx>
-#include <Precision.hxx>
 #include <Geom2d_BSplineCurve.hxx>
 #include <Geom_Curve.hxx>
 #include <Geom_Surface.hxx>
+#include <Precision.hxx>
 #include <ShapeAnalysis_Surface.hxx>
+#include <Standard_Failure.hxx>
 #include <TColStd_HArray1OfReal.hxx>
 #include <TColgp_HArray1OfPnt2d.hxx>
 #include <TopLoc_Location.hxx>
@@ -123,10 +124,16 @@ Handle(Geom2d_Curve) fitted_curve_on(const TopoDS_Edge& e, const Handle(Geom_Sur
       uv->SetValue(k + 1, q);
       params->SetValue(k + 1, s);
     }
-    Geom2dAPI_Interpolate fit(uv, params, false, Precision::PConfusion());
-    fit.Perform();
-    if (!fit.IsDone()) continue;
-    const Handle(Geom2d_BSplineCurve) pc = fit.Curve();
+    // (the interpolation refuses two points that project to one, as points past the end of a
+    // bounded surface do)
+    Handle(Geom2d_BSplineCurve) pc;
+    try {
+      Geom2dAPI_Interpolate fit(uv, params, false, Precision::PConfusion());
+      fit.Perform();
+      if (fit.IsDone()) pc = fit.Curve();
+    } catch (const Standard_Failure&) {
+    }
+    if (pc.IsNull()) continue;
     double worst = 0;
     for (int k = 0; k < 2 * n; ++k) {
       const double s = f + (l - f) * (k + 0.5) / (2 * n);
