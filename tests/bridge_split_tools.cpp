@@ -39,7 +39,8 @@ int faces_of(const TopoDS_Shape& s) {
 int pieces_after(double gap, double max_gap, int* bridged) {
   const TopoDS_Face square = BRepBuilderAPI_MakeFace(gp_Pln(gp::XOY()), 0, 1, 0, 1).Face();
   const TopoDS_Edge cut = BRepBuilderAPI_MakeEdge(gp_Pnt(0.5, 0, 0), gp_Pnt(0.5, 1 - gap, 0)).Edge();
-  *bridged = sweep::occt::bridge_section_ends(square, {cut}, max_gap);
+  // (the curve listed twice, as when two pairs of faces found it: it is not its own target)
+  *bridged = sweep::occt::bridge_section_ends(square, {cut, cut}, max_gap);
   TopTools_ListOfShape tools;
   tools.Append(cut);
   const TopoDS_Shape split = sweep::occt::split_by_edges(square, tools, 1e-9, sweep::occt::SplitMode::NonDestructive);

@@ -59,7 +59,6 @@ int bridge_section_ends(const TopoDS_Face& face, const std::vector<TopoDS_Edge>&
     const TopoDS_Edge& e = TopoDS::Edge(ex.Current());
     if (!BRep_Tool::Degenerated(e)) targets.push_back(target_of(e, max_gap));
   }
-  const std::size_t boundary_edges = targets.size();
   for (const auto& e : tools) targets.push_back(target_of(e, max_gap));
   BRep_Builder bb;
   int bridged = 0;
@@ -72,7 +71,8 @@ int bridge_section_ends(const TopoDS_Face& face, const std::vector<TopoDS_Edge>&
       double nearest = std::numeric_limits<double>::infinity();
       double reach = 0;  // the vertex tolerance that joins the nearest edge
       for (std::size_t m = 0; m < targets.size(); ++m) {
-        if (m == boundary_edges + k || targets[m].box.IsOut(p)) continue;
+        // (not the curve itself, which a face's list of curves can hold twice)
+        if (targets[m].edge.IsSame(tools[k]) || targets[m].box.IsOut(p)) continue;
         const double gap = open_gap(v, targets[m]);
         if (gap <= 0) {  // already on a curve
           nearest = gap;
