@@ -52,6 +52,13 @@ struct Settings {
   /// the touching copy vanishes (off: OCCT's general section, which stalls or strays there).
   bool touching_sections = true;
 
+  // --- grazing sets followed over a motion's range (grazing_family.hpp)
+  /// Events of a grazing set are located by bisection to this fraction of the range.
+  static constexpr double grazing_event_resolution = 1e-9;
+  /// The most events one face's grazing set may have over a range (a set that changes more often
+  /// is reported incomplete).
+  static constexpr int grazing_events_max = 256;
+
   // --- faces swept by a curve under a helical joint, fitted to grids of exact points
   /// The grid's intervals per side: the first tried, doubled up to the last while the fit's
   /// measured error exceeds its tolerance.
