@@ -57,6 +57,28 @@ std::vector<int> bounding_sides(const Patch& p, double tol, int n) {
   return out;
 }
 
+Eigen::Vector2d parameter_periods(const Patch& p) {
+  Eigen::Vector2d period(0, 0);
+  for (int k = 0; k < 2; ++k) {
+    const int a = k == 0 ? 3 : 0, b = k == 0 ? 1 : 2;
+    double size = (side_point(p, b, 0) - side_point(p, a, 0)).norm(), gap = 0;
+    for (int i = 0; i <= 16; ++i) {
+      const double f = i / 16.0;
+      // both sides run counter-clockwise, so opposite sides meet point for point at f and 1 - f
+      gap = std::max(gap, (side_point(p, a, f) - side_point(p, b, 1 - f)).norm());
+      size = std::max(size, (side_point(p, a, f) - side_point(p, a, 0)).norm());
+    }
+    if (gap <= 1e-12 * std::max(size, 1.0)) period[k] = p.hi(k) - p.lo(k);
+  }
+  return period;
+}
+
+Eigen::Vector2d wrapped_parameters(const Patch& p, Eigen::Vector2d s, const Eigen::Vector2d& period) {
+  for (int k = 0; k < 2; ++k)
+    if (period[k] > 0) s[k] = p.lo(k) + std::fmod(std::fmod(s[k] - p.lo(k), period[k]) + period[k], period[k]);
+  return s;
+}
+
 namespace entity_detail {
 
 using Eigen::Vector2d;

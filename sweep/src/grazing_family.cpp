@@ -116,39 +116,13 @@ std::vector<Instant> traced_instants(const Patch& face, const StageMotion& motio
   return seq;
 }
 
-/// The periods of a face's parameters: the span of u (v) when the face closes on itself across it
-/// (its sides u = lo and u = hi coincide), else 0.
-Vector2d periods_of(const Patch& face) {
-  Vector2d period(0, 0);
-  for (int k = 0; k < 2; ++k) {
-    const int a = k == 0 ? 3 : 0, b = k == 0 ? 1 : 2;
-    double size = 0, gap = 0;
-    for (int i = 0; i <= 16; ++i) {
-      const double f = i / 16.0;
-      // the sides run counter-clockwise, so opposite sides meet point for point at f and 1 - f
-      gap = std::max(gap, (side_point(face, a, f) - side_point(face, b, 1 - f)).norm());
-      size = std::max(size, (side_point(face, a, f) - side_point(face, a, 0)).norm());
-    }
-    size = std::max(size, (side_point(face, b, 0) - side_point(face, a, 0)).norm());
-    if (gap <= 1e-12 * std::max(size, 1.0)) period[k] = face.hi(k) - face.lo(k);
-  }
-  return period;
-}
-
-/// A point of the domain's cover moved into the domain by whole periods.
-Vector2d wrapped(const Patch& face, Vector2d s, const Vector2d& period) {
-  for (int k = 0; k < 2; ++k)
-    if (period[k] > 0) s[k] = face.lo(k) + std::fmod(std::fmod(s[k] - face.lo(k), period[k]) + period[k], period[k]);
-  return s;
-}
-
 /// Where the points of an arc (at most 32 of them) go in time dt along the drift at `pose`.
 std::vector<Vector2d> drifted(const Patch& face, const PoseJet& pose, double dt, const std::vector<Vector2d>& arc,
                               const Vector2d& period) {
   std::vector<Vector2d> out;
   const std::size_t step = std::max<std::size_t>(1, arc.size() / 32);
   for (std::size_t k = 0; k < arc.size(); k += step) {
-    const Vector2d w = wrapped(face, arc[k], period);
+    const Vector2d w = wrapped_parameters(face, arc[k], period);
     out.push_back(arc[k] + dt * grazing_drift(face, pose, w.x(), w.y()));
   }
   return out;
@@ -208,7 +182,7 @@ void extend_tracks(const Patch& face, const StageMotion& motion, const Instant& 
   for (std::size_t i = 0; i < span.size(); ++i) {
     const std::vector<Vector2d> moved = drifted(face, pose, dt, span[i].arcs.back(), period);
     // the whole periods between the arc's cover and the domain, and one either way
-    const Vector2d base = span[i].arcs.back().front() - wrapped(face, span[i].arcs.back().front(), period);
+    const Vector2d base = span[i].arcs.back().front() - wrapped_parameters(face, span[i].arcs.back().front(), period);
     for (std::size_t j = 0; j < next.set.curves.size(); ++j) {
       if (!same_kind(span[i], kind_of(face, next.set.curves[j]))) continue;
       Pair best{std::numeric_limits<double>::infinity(), i, j, Vector2d::Zero()};
@@ -270,7 +244,7 @@ void collect_side_spans(const std::vector<Instant>& seq, GrazingFamily& out) {
 GrazingFamily grazing_family(const Patch& face, const StageMotion& motion, int samples, int n) {
   GrazingFamily out;
   const std::vector<Instant> seq = traced_instants(face, motion, std::max(samples, 1), n, out);
-  const Vector2d scale(face.hi(0) - face.lo(0), face.hi(1) - face.lo(1)), period = periods_of(face);
+  const Vector2d scale(face.hi(0) - face.lo(0), face.hi(1) - face.lo(1)), period = parameter_periods(face);
   std::vector<GrazingTrack> span;
   for (const Instant& in : seq) {
     if (in.starts_span) {

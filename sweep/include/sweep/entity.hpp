@@ -86,6 +86,13 @@ Eigen::Vector3d side_point(const Patch& p, int side, double f);
 /// to within `tol`.
 std::vector<int> bounding_sides(const Patch& p, double tol, int n = 64);
 
+/// The periods of a two-parameter patch's parameters: the span of u (of v) when the patch closes
+/// on itself across it (its sides u = lo and u = hi coincide, judged on 17 points of each to 1e-12
+/// of the patch's size), else 0.
+Eigen::Vector2d parameter_periods(const Patch& p);
+/// Parameters of the domain's cover (shifted by whole periods) moved back into the domain.
+Eigen::Vector2d wrapped_parameters(const Patch& p, Eigen::Vector2d s, const Eigen::Vector2d& period);
+
 /// The entity of a spec, placement applied.
 class Entity {
  public:
