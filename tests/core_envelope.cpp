@@ -82,6 +82,12 @@ TEST_CASE("Envelope: a ball's sheets are its tube about the centre's path", "[va
         const PatchPoint q = sheet->eval(s, t);
         CHECK(std::abs((q.x - centre).norm() - r) < 1e-12);
         CHECK(std::abs((q.x - centre).dot(v.normalized())) < 1e-9);
+        // derivatives: those of the map, by differences of exact points
+        const double h = 1e-6;
+        if (s > h && s < 1 - h && t > sheet->lo(1) + h && t < sheet->hi(1) - h) {
+          CHECK((q.xu - (sheet->eval(s + h, t).x - sheet->eval(s - h, t).x) / (2 * h)).norm() < 1e-6 * q.xu.norm());
+          CHECK((q.xv - (sheet->eval(s, t + h).x - sheet->eval(s, t - h).x) / (2 * h)).norm() < 1e-6 * q.xv.norm());
+        }
         // the sheet's normal is the sphere's there
         INFO("s " << s << " t " << t);
         CHECK(q.xu.cross(q.xv).normalized().cross((q.x - centre).normalized()).norm() < 1e-6);

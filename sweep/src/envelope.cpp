@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "cubic_spline.hpp"
 #include "sweep/variety.hpp"
 
 namespace sweep {
@@ -25,17 +26,25 @@ class Sheet {
     std::size_t most = 0;
     for (const auto& arc : track.arcs) most = std::max(most, arc.size());
     m_ = int(std::clamp<std::size_t>(most, 16, 256));
-    for (std::size_t k = 0; k < t_.size(); ++k) rows_.push_back(resampled(track.arcs[k], t_[k]));
+    for (std::size_t k = 0; k < t_.size(); ++k) rows_.push_back(spline_through(resampled(track.arcs[k], t_[k])));
   }
 
-  /// The body point of the sheet at (s, t), in the face's parameters (of the domain's cover): the
-  /// root of the grazing function at t on the line from the interpolated point along the gradient
-  /// there. Near an open arc's end on a side of the domain the line turns smoothly to run along the
-  /// side (over the first of the m_ intervals), so the end stays on the side and the map stays smooth.
-  Vector2d at(double s, double t) const {
+  /// The sheet's point at (s, t) in the face's parameters (of the domain's cover), with its
+  /// derivatives in s and t.
+  struct Jet {
+    Vector2d x, xs, xt;
+  };
+
+  /// The body point of the sheet at (s, t): the root of the grazing function at t on the line from
+  /// the interpolated point along the gradient there. Near an open arc's end on a side of the domain
+  /// the line turns smoothly to run along the side (over the first of the m_ intervals), so the end
+  /// stays on the side and the map stays smooth. The derivatives are those of the root as the
+  /// interpolated point moves and g changes with t (the line's own turning, times the root's tiny
+  /// distance from the interpolated point, left out).
+  Jet at(double s, double t) const {
     const PoseJet pose = motion_->pose(t);
-    const Vector2d guess = interpolated(s, t);
-    Vector2d dir = gradient(guess, pose);
+    Jet guess = interpolated(s, t);
+    Vector2d dir = gradient(guess.x, pose);
     if (!(dir.squaredNorm() > 0)) return guess;
     dir.normalize();
     if (!closed_) {
@@ -48,7 +57,14 @@ class Sheet {
         dir = (w * dir + (1 - w) * along).normalized();
       }
     }
-    return onto_line(guess, dir, pose);
+    Jet out;
+    out.x = onto_line(guess.x, dir, pose);
+    const Vector2d grad = gradient(out.x, pose), w = wrapped_parameters(*face_, out.x, period_);
+    const double across = grad.dot(dir);
+    if (!(std::abs(across) > 0)) return {out.x, guess.xs, guess.xt};
+    out.xs = guess.xs - grad.dot(guess.xs) / across * dir;
+    out.xt = guess.xt - (grad.dot(guess.xt) + grazing_rate(*face_, pose, w.x(), w.y())) / across * dir;
+    return out;
   }
 
   const PatchPtr& face() const { return face_; }
@@ -103,8 +119,9 @@ class Sheet {
     for (int pass = 0; pass < 2; ++pass) {
       std::vector<Vector2d> along = row;
       if (closed_) along.push_back(row.front());
-      row = placed(along, pose, [this, &row](std::size_t seg, double f) {
-        return cubic_on(row, closed_, double(seg - 1) + f);
+      const detail::CubicSpline2 cubic = spline_through(row);
+      row = placed(along, pose, [this, &cubic](std::size_t seg, double f) {
+        return cubic((double(seg - 1) + f) / m_);
       }, along.size() - 1);
     }
     return row;
@@ -134,19 +151,12 @@ class Sheet {
     return row;
   }
 
-  /// The cubic through a row's points (Catmull-Rom) at x in [0, n - 1] (closed: [0, n), periodic);
-  /// an open row is extended past its ends linearly (so the end slopes are one-sided differences).
-  static Vector2d cubic_on(const std::vector<Vector2d>& r, bool closed, double x) {
-    const int n = int(r.size());
-    const int i = std::clamp(int(std::floor(x)), 0, closed ? n - 1 : n - 2);
-    const double f = x - i;
-    auto p = [&](int j) -> Vector2d {
-      if (closed) return r[std::size_t(((j % n) + n) % n)];
-      if (j < 0) return 2 * r[0] - r[1];
-      if (j > n - 1) return 2 * r[std::size_t(n - 1)] - r[std::size_t(n - 2)];
-      return r[std::size_t(j)];
-    };
-    return hermite(p(i), p(i + 1), 0.5 * (p(i + 1) - p(i - 1)), 0.5 * (p(i + 2) - p(i)), f);
+  /// The spline through a row's points at s = i / m_ (closed: periodic in s with period 1).
+  detail::CubicSpline2 spline_through(std::vector<Vector2d> row) const {
+    if (closed_) row.push_back(row.front());
+    std::vector<double> knots;
+    for (std::size_t i = 0; i < row.size(); ++i) knots.push_back(double(i) / m_);
+    return detail::CubicSpline2(std::move(knots), std::move(row), closed_);
   }
 
   Vector3d point(const Vector2d& x) const {
@@ -154,27 +164,16 @@ class Sheet {
     return face_->eval(w.x(), w.y()).x;
   }
 
-  /// Row k's point at fraction s.
-  Vector2d row_at(std::size_t k, double s) const { return cubic_on(rows_[k], closed_, s * m_); }
-
-  /// The sheet's body point at (s, t) before Newton: cubic in t through the rows' points at s.
-  Vector2d interpolated(double s, double t) const {
-    const int n = int(t_.size());
-    int k = int(std::upper_bound(t_.begin(), t_.end(), t) - t_.begin()) - 1;
-    k = std::clamp(k, 0, n - 2);
-    const double h = t_[std::size_t(k + 1)] - t_[std::size_t(k)], f = (t - t_[std::size_t(k)]) / h;
-    auto row = [&](int j) { return row_at(std::size_t(std::clamp(j, 0, n - 1)), s); };
-    auto time = [&](int j) { return t_[std::size_t(std::clamp(j, 0, n - 1))]; };
-    const Vector2d a = row(k), b = row(k + 1);
-    // slopes from the neighbouring rows, scaled to this interval
-    const Vector2d da = (row(k + 1) - row(k - 1)) / (time(k + 1) - time(k - 1)) * h;
-    const Vector2d db = (row(k + 2) - row(k)) / (time(k + 2) - time(k)) * h;
-    return hermite(a, b, da, db, f);
-  }
-
-  static Vector2d hermite(const Vector2d& a, const Vector2d& b, const Vector2d& da, const Vector2d& db, double f) {
-    const double f2 = f * f, f3 = f2 * f;
-    return (2 * f3 - 3 * f2 + 1) * a + (f3 - 2 * f2 + f) * da + (-2 * f3 + 3 * f2) * b + (f3 - f2) * db;
+  /// The sheet's body point at (s, t) before Newton, with its derivatives: the spline in t through
+  /// the rows' points at s.
+  Jet interpolated(double s, double t) const {
+    std::vector<Vector2d> at_s, along_s;
+    for (const auto& row : rows_) {
+      at_s.push_back(row(s));
+      along_s.push_back(row.derivative(s));
+    }
+    const detail::CubicSpline2 in_t(t_, std::move(at_s), false), ds_in_t(t_, std::move(along_s), false);
+    return {in_t(t), ds_in_t(t), in_t.derivative(t)};
   }
 
   PatchPtr face_;
@@ -184,7 +183,7 @@ class Sheet {
   int end_side_[2] = {-1, -1};
   int m_ = 16;
   Vector2d period_, scale_;
-  std::vector<std::vector<Vector2d>> rows_;
+  std::vector<detail::CubicSpline2> rows_;
 };
 
 }  // namespace
@@ -195,22 +194,16 @@ PatchPtr envelope_patch(const PatchPtr& face, std::shared_ptr<const StageMotion>
     throw std::invalid_argument("envelope_patch: a track needs arcs at two instants at least");
   auto sheet = std::make_shared<const Sheet>(face, std::move(motion), track);
   const double t0 = track.t.front(), t1 = track.t.back();
-  auto world = [sheet](double s, double t) {
-    const Vector2d x = wrapped_parameters(*sheet->face(), sheet->at(s, t), sheet->period());
-    return sheet->motion().transform(t) * sheet->face()->eval(x.x(), x.y()).x;
-  };
-  auto map = [sheet, world, t0, t1](const double* st) {
-    const double s = st[0], t = st[1], hs = 1e-6, ht = 1e-6 * (t1 - t0);
-    // central differences, one-sided (second order) at the ends of an open range
-    auto diff = [](const std::function<Vector3d(double)>& f, double x, double h, double lo, double hi, bool periodic) {
-      if (periodic || (x - h >= lo && x + h <= hi)) return Vector3d((f(x + h) - f(x - h)) / (2 * h));
-      const double d = x - h < lo ? h : -h;
-      return Vector3d((-3 * f(x) + 4 * f(x + d) - f(x + 2 * d)) / (2 * d));
-    };
+  auto map = [sheet](const double* st) {
+    const double t = st[1];
+    const auto j = sheet->at(st[0], t);
+    const Vector2d w = wrapped_parameters(*sheet->face(), j.x, sheet->period());
+    const PatchPoint y = sheet->face()->eval(w.x(), w.y());
+    const PoseJet P = sheet->motion().pose(t);
     PatchPoint p;
-    p.x = world(s, t);
-    p.xu = diff([&](double a) { return world(a, t); }, s, hs, 0, 1, sheet->closed());
-    p.xv = diff([&](double b) { return world(s, b); }, t, ht, t0, t1, false);
+    p.x = P.R * y.x + P.p;
+    p.xu = P.R * (y.xu * j.xs.x() + y.xv * j.xs.y());
+    p.xv = P.dR * y.x + P.dp + P.R * (y.xu * j.xt.x() + y.xv * j.xt.y());
     return p;
   };
   return std::make_shared<Patch>(2, std::vector<double>{0.0, t0}, std::vector<double>{1.0, t1}, std::move(map),

@@ -224,4 +224,46 @@ PatchFace patch_face(const Patch& p, double tol) {
   return out;
 }
 
+namespace {
+
+/// The patch over the part [lo, hi] of its domain.
+Patch part_of(const PatchPtr& p, const std::vector<double>& lo, const std::vector<double>& hi) {
+  Patch part(2, lo, hi, [p](const double* s) { return p->eval(s); }, p->form(), p->what(), p->orientation());
+  part.fixed = p->fixed;
+  return part;
+}
+
+void collect_faces(const PatchPtr& p, double tol, int splits_left, std::vector<PatchFace>& out) {
+  PatchFace f = patch_face(*p, tol);
+  if (f.error <= tol || f.exact || splits_left <= 0) {
+    out.push_back(std::move(f));
+    return;
+  }
+  // halve across the side that is longer in space (measured along the domain's middle lines)
+  const double mu = 0.5 * (p->lo(0) + p->hi(0)), mv = 0.5 * (p->lo(1) + p->hi(1));
+  const double lu = (p->eval(p->hi(0), mv).x - p->eval(mu, mv).x).norm() + (p->eval(mu, mv).x - p->eval(p->lo(0), mv).x).norm();
+  const double lv = (p->eval(mu, p->hi(1)).x - p->eval(mu, mv).x).norm() + (p->eval(mu, mv).x - p->eval(mu, p->lo(1)).x).norm();
+  const int k = lu >= lv ? 0 : 1;
+  const double mid = k == 0 ? mu : mv;
+  std::vector<double> lo{p->lo(0), p->lo(1)}, hi{p->hi(0), p->hi(1)};
+  std::vector<double> hi_a = hi, lo_b = lo;
+  hi_a[std::size_t(k)] = mid;
+  lo_b[std::size_t(k)] = mid;
+  collect_faces(std::make_shared<Patch>(part_of(p, lo, hi_a)), tol, splits_left - 1, out);
+  collect_faces(std::make_shared<Patch>(part_of(p, lo_b, hi)), tol, splits_left - 1, out);
+}
+
+}  // namespace
+
+std::vector<PatchFace> patch_faces(const Patch& patch, double tol, int max_splits) {
+  if (patch.dim() != 2) throw ComputeError("patch_faces: '" + patch.what() + "' is not a surface patch");
+  std::vector<double> lo{patch.lo(0), patch.lo(1)}, hi{patch.hi(0), patch.hi(1)};
+  auto whole = std::make_shared<Patch>(2, lo, hi, [&patch](const double* s) { return patch.eval(s); }, patch.form(),
+                                       patch.what(), patch.orientation());
+  whole->fixed = patch.fixed;
+  std::vector<PatchFace> out;
+  collect_faces(whole, tol, max_splits, out);
+  return out;
+}
+
 }  // namespace sweep::occt

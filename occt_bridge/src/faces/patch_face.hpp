@@ -1,6 +1,7 @@
 #pragma once
 // A core patch (sweep/entity.hpp) as an OCCT face: the one place where patches become faces.
 #include <TopoDS_Face.hxx>
+#include <vector>
 
 #include "sweep/entity.hpp"
 
@@ -18,5 +19,11 @@ struct PatchFace {
 /// other patch as a B-spline fitted within `tol`. The error is measured on a grid of patch points.
 /// @throws ComputeError when no face can be made.
 PatchFace patch_face(const Patch& patch, double tol);
+
+/// The faces of a two-parameter patch within `tol`: patch_face's, or, when its fitted B-spline is
+/// not within `tol`, the faces of the two halves of the domain (split across its longer side in
+/// space), and so on up to `max_splits` times; a part that still does not fit is kept with its
+/// measured error.
+std::vector<PatchFace> patch_faces(const Patch& patch, double tol, int max_splits);
 
 }  // namespace sweep::occt

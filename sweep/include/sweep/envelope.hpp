@@ -16,8 +16,10 @@ namespace sweep {
 
 /// The sheet swept by `track` (grazing_family's, traced on `face` under `motion`): a patch over
 /// s in [0, 1] (along the arc; periodic when the arc is closed) and t over the track's instants.
-/// Its derivatives are central differences of exact points (relative error about 1e-9); its
-/// orientation is the one of (ds, dt), which classification decides on later. The ends of an open
+/// Its derivatives follow the root as the interpolated point moves and the grazing function changes
+/// with t (what is left out, the Newton line's turning times the root's distance from the
+/// interpolated point, is of the order of the interpolation's error); its orientation is the one of
+/// (ds, dt), which classification decides on later. The ends of an open
 /// arc that lie on a side of the face's domain stay on that side (the sheet meets the sweep of the
 /// face's edge there). Throws std::invalid_argument for a track with fewer than two instants.
 PatchPtr envelope_patch(const PatchPtr& face, std::shared_ptr<const StageMotion> motion, const GrazingTrack& track,
