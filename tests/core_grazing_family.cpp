@@ -119,8 +119,10 @@ TEST_CASE("Grazing family: seed 001's rolling cylinder changes where the circle 
     for (double t : event_times(cap))
       if (t > 1e-6 && t < 1 - 1e-6) inner.push_back(t);
     REQUIRE(inner.size() == 2);
-    CHECK(inner[0] == Approx(line_out).margin(1e-7));
-    CHECK(inner[1] == Approx(1 - line_out).margin(1e-7));
+    // (seen once the line reaches a node of the rim, at most half a cell, 2 pi / 61 / 2, from where
+    // it touches the rim: 0.5 (1 - cos 0.0515) = 6.6e-4 below the rim, at 4 cos(pi t) = 3.7 a unit t)
+    CHECK(inner[0] == Approx(line_out).margin(2e-4));
+    CHECK(inner[1] == Approx(1 - line_out).margin(2e-4));
     for (const GrazingTrack& t : cap.tracks) {
       const bool early = t.t.back() <= line_out, late = t.t.front() >= 1 - line_out;
       CHECK((early || late));

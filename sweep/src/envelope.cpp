@@ -36,7 +36,7 @@ class Sheet {
   };
 
   /// The body point of the sheet at (s, t): the root of the grazing function at t on the line from
-  /// the interpolated point along the gradient there. Near an open arc's end on a side of the domain
+  /// the interpolated point across the interpolated arc. Near an open arc's end on a side of the domain
   /// the line turns smoothly to run along the side (over the first of the m_ intervals), so the end
   /// stays on the side and the map stays smooth. The derivatives are those of the root as the
   /// interpolated point moves and g changes with t (the line's own turning, times the root's tiny
@@ -44,7 +44,10 @@ class Sheet {
   Jet at(double s, double t) const {
     const PoseJet pose = motion_->pose(t);
     Jet guess = interpolated(s, t);
-    Vector2d dir = gradient(guess.x, pose);
+    // across the interpolated arc (where two arcs cross, the gradient vanishes and turns with the
+    // point, so it would not say which arc to follow); along the gradient where the arc has no length
+    Vector2d dir(-guess.xs.y(), guess.xs.x());
+    if (!(dir.norm() > 1e-9 * scale_.norm())) dir = gradient(guess.x, pose);
     if (!(dir.squaredNorm() > 0)) return guess;
     dir.normalize();
     if (!closed_) {

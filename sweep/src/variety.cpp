@@ -110,6 +110,10 @@ void find_vanishing_sides(const Patch& face, const PoseJet& pose, int n, double 
   }
 }
 
+/// An odd number of grid intervals near n (at least 3): a face's lines of symmetry (its half and
+/// quarter turns) then fall inside grid cells, not on grid lines where g is zero at every node.
+int odd_below(int n) { return std::max(3, n % 2 ? n - 2 : n - 3); }
+
 }  // namespace
 
 GrazingSet grazing_set(const Patch& face, const StageMotion& motion, double t, int n) {
@@ -123,9 +127,10 @@ GrazingSet grazing_set(const Patch& face, const StageMotion& motion, double t, i
                                                      face.lo(1) + (face.hi(1) - face.lo(1)) * j / n)));
   if (!(scale > 0)) return out;  // the face does not move, or grazes everywhere
   find_vanishing_sides(face, pose, n, scale, out, field);
-  // the zero set, traced on the same grid with the values read just inside vanishing sides
+  // the zero set, traced with the values read just inside vanishing sides; branches whose saddle
+  // has |g| below 1e-9 of the largest meet there (they cross)
   out.curves = contour_chains([&field](const Vector2d& s) { return field.at(s); }, face.lo(0), face.hi(0), face.lo(1),
-                              face.hi(1), n, n, 0.0);
+                              face.hi(1), odd_below(n), odd_below(n - 2), 1e-11 * scale);
   return out;
 }
 

@@ -30,6 +30,7 @@
 #include "base/stop.hpp"
 #include "run/run_steps.hpp"
 #include "sweep/error.hpp"
+#include "sweep/candidate_patches.hpp"
 #include "sweep/stage_membership.hpp"
 #include "sweep/swept_box.hpp"
 #include "varieties/ball_path.hpp"
@@ -326,6 +327,27 @@ void low_dimension_stage_sweep(const Spec& spec, const StageMotion& m, const Siz
   res.shape = std::make_shared<Shape>(finish_curve_or_surface(comp, dim + 1, size, fit_err, opt.verify, rep));
 }
 
+/// The candidate varieties of an entity under a general motion, for `sweepvol varieties`, when
+/// they are asked for and the core has the entity: the core's candidate patches with their areas
+/// (no faces are made of them yet); whether they were listed.
+bool list_general_candidates(const Spec& spec, const Sizing& sizing, const RunOptions& opt, RunRecord& record) {
+  if (!opt.varieties || !sizing.entity.core || spec.entity.dimension() != 3) return false;
+  const auto t0 = Clock::now();
+  for (const CandidatePatch& c : candidate_patches(*sizing.entity.core, spec.motion.stage, [] { check_stop(); })) {
+    Variety v;
+    v.stage = 1;
+    v.type = c.type;
+    v.what = c.patch->what();
+    for (const auto& [name, value] : c.fixed) v.fixed[name] = value;
+    for (const auto& [name, range] : c.free) v.free[name] = {range.first, range.second};
+    v.area = patch_area(*c.patch);
+    check_stop();
+    opt.varieties->push_back(std::move(v));
+  }
+  record.add_seconds("varieties", since(t0));
+  return true;
+}
+
 }  // namespace
 
 RunResult run_stage_motion_sweep(const Spec& spec, const RunOptions& opt) {
@@ -373,10 +395,12 @@ RunResult run_stage_motion_sweep(const Spec& spec, const RunOptions& opt) {
         ball_stage_sweep(spec, m, sizing, pieces, opt, record, res);
       }
     } else {
+      const bool listed = list_general_candidates(spec, sizing, opt, record);
       throw ComputeError(std::string("a ") + to_string(spec.entity.kind) + " entity under a " +
                          to_string(spec.motion.kind) +
                          " motion that is not a sequence of screws is not supported yet (points, curves and balls are; "
-                         "keyframes whose segments are screws and paths that are one screw take every entity)");
+                         "keyframes whose segments are screws and paths that are one screw take every entity)" +
+                         (listed ? "; its candidate varieties are listed, with the areas of their patches" : ""));
     }
   } catch (const InputError&) {
     throw;

@@ -62,7 +62,7 @@ struct GrazingFamily {
   bool complete = true;
 };
 
-/// The grazing set of `face` over the motion's range: traced on an n x n grid at `samples` + 1
+/// The grazing set of `face` over the motion's range: traced (grazing_set, about n x n cells) at `samples` + 1
 /// evenly spaced instants and at the bisection points of events, each event located to
 /// Settings::grazing_event_resolution times the range. Events are those of the traced sets: a
 /// feature smaller than a grid cell is seen when it grows past one.

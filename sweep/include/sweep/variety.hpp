@@ -50,9 +50,11 @@ struct GrazingSet {
   std::vector<int> sides;
 };
 
-/// The grazing set of `face` at time t, traced on an n x n grid of the domain (marching squares:
-/// every sign change of g between grid points is found; curves closer together than a grid cell
-/// may be joined).
+/// The grazing set of `face` at time t, traced on a grid of about n x n cells of the domain
+/// (marching squares: every sign change of g between grid points is found; curves closer together
+/// than a grid cell may be joined; where two cross inside a cell they end at the crossing). The
+/// counts of cells are odd, so that lines of symmetry of a face (its half and quarter turns) fall
+/// inside cells rather than on grid lines.
 GrazingSet grazing_set(const Patch& face, const StageMotion& motion, double t, int n = 64);
 
 }  // namespace sweep

@@ -1,0 +1,118 @@
+#include "sweep/candidate_patches.hpp"
+
+#include <cstdio>
+
+#include "sweep/envelope.hpp"
+#include "sweep/grazing_family.hpp"
+#include "sweep/variety.hpp"
+
+namespace sweep {
+namespace {
+
+std::string number(double x) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.6g", x);
+  return b;
+}
+
+/// Side `side` of a face's domain as a curve patch (0: v = lo, 1: u = hi, 2: v = hi, 3: u = lo), in
+/// the direction of its free parameter.
+PatchPtr side_curve(const PatchPtr& face, int side, const std::string& what) {
+  const bool along_u = side == 0 || side == 2;
+  const double fixed = side == 0 ? face->lo(1) : side == 1 ? face->hi(0) : side == 2 ? face->hi(1) : face->lo(0);
+  auto map = [face, along_u, fixed](const double* s) {
+    const PatchPoint p = along_u ? face->eval(s[0], fixed) : face->eval(fixed, s[0]);
+    return PatchPoint{p.x, along_u ? p.xu : p.xv, Eigen::Vector3d::Zero()};
+  };
+  const int k = along_u ? 0 : 1;
+  return std::make_shared<Patch>(1, std::vector<double>{face->lo(k)}, std::vector<double>{face->hi(k)}, std::move(map),
+                                 PatchForm{}, what);
+}
+
+/// The patch over t in [t0, t1] only.
+PatchPtr over_times(const PatchPtr& sheet, double t0, double t1) {
+  auto out = std::make_shared<Patch>(2, std::vector<double>{sheet->lo(0), t0}, std::vector<double>{sheet->hi(0), t1},
+                                     [sheet](const double* s) { return sheet->eval(s); }, sheet->form(),
+                                     sheet->what(), sheet->orientation());
+  out->fixed = sheet->fixed;
+  return out;
+}
+
+/// The envelope sheets of the sides of a face's domain that graze all along over spans of t (a
+/// seam line of a face grazing, not a pole), each seam once.
+void add_side_sheets(const PatchPtr& face, const std::shared_ptr<const StageMotion>& motion,
+                     const GrazingFamily& family, std::vector<CandidatePatch>& out) {
+  const Eigen::Vector2d period = parameter_periods(*face);
+  const double size = (side_point(*face, 0, 0) - side_point(*face, 2, 0.5)).norm() +
+                      (side_point(*face, 1, 0) - side_point(*face, 3, 0.5)).norm();
+  static const char* names[4] = {"v = lo", "u = hi", "v = hi", "u = lo"};
+  for (const GrazingFamily::SideSpan& span : family.sides) {
+    const int side = span.side;
+    if ((side == 1 && period.x() > 0) || (side == 2 && period.y() > 0)) continue;  // the seam's other side
+    if (!(span.t1 - span.t0 > 1e-6 * (motion->hi() - motion->lo()))) continue;
+    double length = 0;
+    for (int i = 1; i <= 8; ++i) length += (side_point(*face, side, i / 8.0) - side_point(*face, side, (i - 1) / 8.0)).norm();
+    if (!(length > 1e-9 * size)) continue;  // a pole
+    const std::string what = "the side " + std::string(names[side]) + " of " + face->what() +
+                             " grazing all along, swept over t in [" + number(span.t0) + ", " + number(span.t1) + "]";
+    const PatchPtr curve = side_curve(face, side, what);
+    out.push_back({"interior", over_times(swept_curve(curve, motion, what), span.t0, span.t1), {},
+                   {{"s", {curve->lo(0), curve->hi(0)}}, {"t", {span.t0, span.t1}}}});
+  }
+}
+
+}  // namespace
+
+std::vector<CandidatePatch> candidate_patches(const Entity& entity, const std::shared_ptr<const StageMotion>& motion,
+                                              const std::function<void()>& check) {
+  auto poll = [&check] {
+    if (check) check();
+  };
+  std::vector<CandidatePatch> out;
+  const double lo = motion->lo(), hi = motion->hi();
+  for (double t : {lo, hi})
+    for (const PatchPtr& face : entity.faces()) {
+      poll();
+      const std::string when = t == lo ? "start" : "end";
+      out.push_back({"limit", moved_patch(face, motion, t, face->what() + " at the " + when + " of the motion"),
+                     {{"t", t}}, {}});
+    }
+  for (const PatchPtr& edge : entity.edges()) {
+    poll();
+    out.push_back({"boundary", swept_curve(edge, motion, edge->what() + " swept by the motion"), {},
+                   {{"s", {edge->lo(0), edge->hi(0)}}, {"t", {lo, hi}}}});
+  }
+  for (const PatchPtr& face : entity.faces()) {
+    poll();
+    const GrazingFamily family = grazing_family(*face, *motion);
+    int arc = 0;
+    for (const GrazingTrack& track : family.tracks) {
+      // an instant between two events, or a sliver of the range between two
+      if (track.t.size() < 2 || !(track.t.back() - track.t.front() > 1e-6 * (hi - lo))) continue;
+      poll();
+      const std::string what = "grazing arc " + std::to_string(++arc) + " (n . v = 0) of " + face->what() +
+                               " swept over t in [" + number(track.t.front()) + ", " + number(track.t.back()) + "]";
+      out.push_back({"interior", envelope_patch(face, motion, track, what), {},
+                     {{"s", {0.0, 1.0}}, {"t", {track.t.front(), track.t.back()}}}});
+    }
+    add_side_sheets(face, motion, family, out);
+  }
+  return out;
+}
+
+double patch_area(const Patch& p, int n) {
+  static const double x[4] = {0.0694318442029737, 0.3300094782075719, 0.6699905217924281, 0.9305681557970263};
+  static const double w[4] = {0.1739274225687269, 0.3260725774312731, 0.3260725774312731, 0.1739274225687269};
+  const double du = (p.hi(0) - p.lo(0)) / n, dv = (p.hi(1) - p.lo(1)) / n;
+  double area = 0;
+  for (int a = 0; a < n; ++a)
+    for (int b = 0; b < n; ++b)
+      for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j) {
+          const PatchPoint q = p.eval(p.lo(0) + (a + x[i]) * du, p.lo(1) + (b + x[j]) * dv);
+          area += w[i] * w[j] * du * dv * q.xu.cross(q.xv).norm();
+        }
+  return area;
+}
+
+}  // namespace sweep
