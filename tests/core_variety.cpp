@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include "sweep/variety.hpp"
@@ -224,4 +225,80 @@ TEST_CASE("Varieties: the grazing set's drift carries a ball's great circle to t
       }
     }
   CHECK(moved > 20);
+}
+
+TEST_CASE("Varieties: on faces of revolution the grazing function is A cos u + B sin u + C on each circle",
+          "[variety]") {
+  const PathMotion path = wandering_path();
+  const char* entities[] = {
+      R"({"kind": "cylinder", "base": [0.2, 0, 0.1], "axis": [1, 0.3, 0.4], "radius": 0.4, "height": 1.5,
+          "placement": {"translate": [0.1, 0.2, 0.3], "rotate": {"axis": [0.2, 1, 0], "angle": 0.7}}})",
+      R"({"kind": "cone", "base": [0, 0.3, 0], "axis": [0.3, 1, 0.2], "radius1": 0.6, "radius2": 0.25, "height": 1.2})",
+      R"({"kind": "sphere", "center": [0.3, -0.2, 0.5], "radius": 0.8})",
+      R"({"kind": "torus", "center": [0.2, 0, 0], "axis": [0.3, 0.2, 1], "major": 0.8, "minor": 0.25})"};
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int circles = 0, grazing = 0;
+  for (const char* json : entities) {
+    const EntityPtr e = entity_of(json);
+    REQUIRE(e);
+    for (const PatchPtr& face : e->faces()) {
+      INFO(face->what());
+      REQUIRE(face->form().revolved);
+      auto scale_at = [&face](const PoseJet& P) {  // |g| at the face's size
+        double scale = 0;
+        for (int i = 0; i <= 32; ++i)
+          for (int j = 0; j <= 32; ++j)
+            scale = std::max(scale, std::abs(grazing_value(*face, P, face->lo(0) + (face->hi(0) - face->lo(0)) * i / 32,
+                                                           face->lo(1) + (face->hi(1) - face->lo(1)) * j / 32)));
+        return scale;
+      };
+      for (double t : {0.3, 1.1, 1.7}) {
+        const PoseJet P = path.pose(t);
+        const double scale = scale_at(P);
+        for (int k = 0; k < 9; ++k) {
+          const double v = face->lo(1) + (face->hi(1) - face->lo(1)) * (k + 0.5) / 9;
+          // the form itself, at random u, against three samples
+          const double g0 = grazing_value(*face, P, 0, v), g1 = grazing_value(*face, P, M_PI / 2, v),
+                       g2 = grazing_value(*face, P, M_PI, v);
+          const double C = 0.5 * (g0 + g2), A = 0.5 * (g0 - g2), B = g1 - C;
+          for (int r = 0; r < 5; ++r) {
+            const double u = 2 * M_PI * unit(rng);
+            CHECK(std::abs(grazing_value(*face, P, u, v) - (A * std::cos(u) + B * std::sin(u) + C)) <= 1e-12 * scale);
+          }
+          // the roots are roots, and as many as the sign changes of g round the circle
+          const std::vector<double> roots = grazing_roots_on_circle(*face, P, v, scale);
+          for (double u : roots) CHECK(std::abs(grazing_value(*face, P, u, v)) <= 1e-11 * scale);
+          const int n = 4000;
+          int changes = 0;
+          double smallest = std::numeric_limits<double>::infinity(), prev = grazing_value(*face, P, 0, v);
+          for (int i = 1; i <= n; ++i) {
+            const double g = grazing_value(*face, P, 2 * M_PI * i / n, v);
+            changes += (g > 0) != (prev > 0);
+            smallest = std::min(smallest, std::abs(g));
+            prev = g;
+          }
+          if (std::abs(std::abs(C) - std::hypot(A, B)) < 1e-6 * scale) continue;  // a circle that nearly touches
+          ++circles;
+          grazing += !roots.empty();
+          CHECK(int(roots.size()) == changes);
+        }
+      }
+      // every point the tracer finds lies on a root of its circle
+      for (double t : {0.3, 1.7}) {
+        const PoseJet P = path.pose(t);
+        for (const auto& line : grazing_set(*face, path, t).curves)
+          for (const Vector2d& s : line) {
+            bool whole = false;
+            const std::vector<double> roots = grazing_roots_on_circle(*face, P, s.y(), scale_at(P), &whole);
+            if (whole) continue;  // a pole, or a circle that grazes all round
+            double nearest = 10;
+            for (double u : roots) nearest = std::min(nearest, std::abs(std::remainder(s.x() - u, 2 * M_PI)));
+            CHECK(nearest < 1e-7);
+          }
+      }
+    }
+  }
+  CHECK(circles > 100);
+  CHECK(grazing > 20);
 }

@@ -114,6 +114,7 @@ PatchPtr revolved_face(const Frame& f, std::function<Vector2d(double)> profile,
     const Vector3d radial = c * f.x + sn * f.y, around = -sn * f.x + c * f.y;
     return PatchPoint{f.o + rz[0] * radial + rz[1] * f.z, rz[0] * around, d[0] * radial + d[1] * f.z};
   };
+  form.revolved = true;
   return std::make_shared<Patch>(2, std::vector<double>{0.0, v0}, std::vector<double>{2 * M_PI, v1}, std::move(map),
                                  form, std::move(what), orientation);
 }

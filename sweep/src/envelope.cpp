@@ -94,15 +94,17 @@ class Sheet {
     return grad.squaredNorm() > 0 ? onto_line(x, grad.normalized(), pose) : x;
   }
 
-  /// Newton steps from x along the unit direction `dir` (in the face's parameters) to a root of g.
+  /// Newton steps from x along the unit direction `dir` (in the face's parameters) to a root of g,
+  /// each at most a hundredth of the domain (so that a flat stretch of g does not throw the point
+  /// onto another arc).
   Vector2d onto_line(const Vector2d& x, const Vector2d& dir, const PoseJet& pose) const {
-    const double h = 1e-7 * scale_.norm();
+    const double h = 1e-7 * scale_.norm(), most = 0.01 * scale_.norm();
     double lambda = 0;
-    for (int it = 0; it < 40; ++it) {
+    for (int it = 0; it < 60; ++it) {
       const Vector2d p = x + lambda * dir;
       const double d = (g(p + h * dir, pose) - g(p - h * dir, pose)) / (2 * h);
       if (!(std::abs(d) > 0)) break;
-      const double step = -g(p, pose) / d;
+      const double step = std::clamp(-g(p, pose) / d, -most, most);
       lambda += step;
       if (std::abs(step) < 1e-15 * scale_.norm()) break;
     }

@@ -66,6 +66,22 @@ Vector2d grazing_drift(const Patch& face, const PoseJet& P, double u, double v, 
   return -grazing_rate(face, P, u, v) * grad / g2;
 }
 
+std::vector<double> grazing_roots_on_circle(const Patch& face, const PoseJet& pose, double v, double scale,
+                                            bool* whole) {
+  const double u0 = face.lo(0);
+  const double g0 = grazing_value(face, pose, u0, v), g1 = grazing_value(face, pose, u0 + M_PI / 2, v),
+               g2 = grazing_value(face, pose, u0 + M_PI, v);
+  const double C = 0.5 * (g0 + g2), A = 0.5 * (g0 - g2), B = g1 - C, rho = std::hypot(A, B);
+  if (whole) *whole = rho <= 1e-12 * scale && std::abs(C) <= 1e-12 * scale;
+  if (rho <= 1e-12 * scale || std::abs(C) > rho) return {};
+  const double phi = std::atan2(B, A), half = std::acos(std::clamp(-C / rho, -1.0, 1.0));
+  auto into = [u0](double u) { return u0 + std::fmod(std::fmod(u, 2 * M_PI) + 2 * M_PI, 2 * M_PI); };
+  if (half == 0.0) return {into(phi)};
+  std::vector<double> out{into(phi - half), into(phi + half)};
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
 namespace {
 
 /// g over the face at one pose, read just inside the domain on the sides along which it vanishes

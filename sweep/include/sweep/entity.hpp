@@ -37,6 +37,10 @@ struct PatchForm {
   /// and v the height along axis (cylinder, cone), the latitude (sphere) or the angle about the
   /// tube (torus); for a plane, the coordinates along ref and axis x ref.
   bool surface_parameters = false;
+  /// True when the patch is a surface of revolution about `axis` swept by its own u: u is the angle
+  /// about the axis (from `ref`) and each v = const is a circle about it (the faces of cylinders,
+  /// cones, spheres, tori and disks).
+  bool revolved = false;
 };
 const char* to_string(PatchForm::Kind k);
 

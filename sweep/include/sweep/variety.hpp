@@ -39,6 +39,15 @@ double grazing_rate(const Patch& face, const PoseJet& pose, double u, double v);
 /// with t; not defined where grad g vanishes (a crossing of two branches: then zero).
 Eigen::Vector2d grazing_drift(const Patch& face, const PoseJet& pose, double u, double v, double h = 1e-6);
 
+/// The grazing points of one circle v = const of a face of revolution (PatchForm::revolved) at a
+/// pose, in closed form (seed 003): there n is a combination of the circle's radial direction and
+/// the axis, and w is affine in the point with a skew linear part, so g = A cos u + B sin u + C
+/// exactly, with A, B, C from g at u = 0, pi/2 and pi. Its roots in [lo(0), lo(0) + 2 pi), none or
+/// one (touching) or two; `whole` (when given) is set when g vanishes on the whole circle to
+/// 1e-12 of `scale` (|g| at the face's size) and then no root is listed.
+std::vector<double> grazing_roots_on_circle(const Patch& face, const PoseJet& pose, double v, double scale,
+                                            bool* whole = nullptr);
+
 /// The grazing set of a face at one instant, in its parameter domain.
 struct GrazingSet {
   /// Polylines on which g vanishes (each point the root of g on an edge of the grid); a closed one
