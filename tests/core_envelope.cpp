@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "sweep/envelope.hpp"
+#include "util/core_entities.hpp"
 
 using Eigen::Vector2d;
 using Eigen::Vector3d;
@@ -14,14 +15,8 @@ using namespace sweep;
 
 namespace {
 
-Expr texpr(const char* text) { return Expr::parse(text, {"t"}); }
-
-EntityPtr entity_of(const std::string& entity_json) {
-  const std::string text = R"({"sweep": 1, "entity": )" + entity_json +
-                           R"(, "motion": {"kind": "axes", "joints": [{"type": "revolute", "point": [0, 0, 0],
-                              "direction": [0, 0, 1], "range": [0, 1]}]}})";
-  return make_entity(parse_spec(text, "").entity);
-}
+using sweep_test::entity_of;
+using sweep_test::texpr;
 
 /// The 4-point Gauss-Legendre rule on [0, 1].
 const double gauss_x[4] = {0.0694318442029737, 0.3300094782075719, 0.6699905217924281, 0.9305681557970263};

@@ -7,6 +7,7 @@
 
 #include "sweep/grazing_family.hpp"
 #include "sweep/variety.hpp"
+#include "util/core_entities.hpp"
 
 using Eigen::Vector2d;
 using Eigen::Vector3d;
@@ -14,20 +15,14 @@ using namespace sweep;
 
 namespace {
 
-Expr texpr(const char* text) { return Expr::parse(text, {"t"}); }
-
-EntityPtr entity_of(const std::string& entity_json) {
-  const std::string text = R"({"sweep": 1, "entity": )" + entity_json +
-                           R"(, "motion": {"kind": "axes", "joints": [{"type": "revolute", "point": [0, 0, 0],
-                              "direction": [0, 0, 1], "range": [0, 1]}]}})";
-  return make_entity(parse_spec(text, "").entity);
-}
+using sweep_test::entity_of;
+using sweep_test::texpr;
 
 EntityPtr unit_cylinder() {
   return entity_of(R"({"kind": "cylinder", "base": [0, 0, -1], "axis": [0, 0, 1], "radius": 0.5, "height": 2})");
 }
 
-/// The events of `f` of change `c`, as their instants.
+/// The instants of the events of `f`.
 std::vector<double> event_times(const GrazingFamily& f) {
   std::vector<double> t;
   for (const GrazingEvent& e : f.events) t.push_back(e.t());

@@ -8,6 +8,7 @@
 #include <random>
 
 #include "sweep/variety.hpp"
+#include "util/core_entities.hpp"
 
 using Eigen::Vector2d;
 using Eigen::Vector3d;
@@ -15,20 +16,10 @@ using namespace sweep;
 
 namespace {
 
-Expr texpr(const char* text) { return Expr::parse(text, {"t"}); }
+using sweep_test::entity_of;
+using sweep_test::texpr;
 
-EntityPtr entity_of(const std::string& entity_json) {
-  const std::string text = R"({"sweep": 1, "entity": )" + entity_json +
-                           R"(, "motion": {"kind": "axes", "joints": [{"type": "revolute", "point": [0, 0, 0],
-                              "direction": [0, 0, 1], "range": [0, 1]}]}})";
-  return make_entity(parse_spec(text, "").entity);
-}
-
-/// A path that is no screw: along (t, t^2, sin t) while turning about an axis that tilts with t.
-PathMotion wandering_path() {
-  const Expr tr[3] = {texpr("t"), texpr("t^2"), texpr("sin(t)")};
-  return PathMotion(0, 2, tr, {PathRotation{{texpr("0.3"), texpr("1"), texpr("t")}, texpr("0.7*t")}});
-}
+using sweep_test::wandering_path;
 
 /// A screw about a tilted axis, q in [0, 4].
 ScrewJoint tilted_screw() {
