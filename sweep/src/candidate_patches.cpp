@@ -4,6 +4,7 @@
 
 #include "sweep/envelope.hpp"
 #include "sweep/grazing_family.hpp"
+#include "sweep/settings.hpp"
 #include "sweep/variety.hpp"
 
 namespace sweep {
@@ -49,7 +50,7 @@ void add_side_sheets(const PatchPtr& face, const std::shared_ptr<const StageMoti
   for (const GrazingFamily::SideSpan& span : family.sides) {
     const int side = span.side;
     if ((side == 1 && period.x() > 0) || (side == 2 && period.y() > 0)) continue;  // the seam's other side
-    if (!(span.t1 - span.t0 > 1e-6 * (motion->hi() - motion->lo()))) continue;
+    if (!(span.t1 - span.t0 > Settings::grazing_sliver * (motion->hi() - motion->lo()))) continue;
     double length = 0;
     for (int i = 1; i <= 8; ++i) length += (side_point(*face, side, i / 8.0) - side_point(*face, side, (i - 1) / 8.0)).norm();
     if (!(length > 1e-9 * size)) continue;  // a pole
@@ -88,7 +89,7 @@ std::vector<CandidatePatch> candidate_patches(const Entity& entity, const std::s
     int arc = 0;
     for (const GrazingTrack& track : family.tracks) {
       // an instant between two events, or a sliver of the range between two
-      if (track.t.size() < 2 || !(track.t.back() - track.t.front() > 1e-6 * (hi - lo))) continue;
+      if (track.t.size() < 2 || !(track.t.back() - track.t.front() > Settings::grazing_sliver * (hi - lo))) continue;
       poll();
       const std::string what = "grazing arc " + std::to_string(++arc) + " (n . v = 0) of " + face->what() +
                                " swept over t in [" + number(track.t.front()) + ", " + number(track.t.back()) + "]";

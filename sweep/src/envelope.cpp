@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "cubic_spline.hpp"
+#include "sweep/settings.hpp"
 #include "sweep/variety.hpp"
 
 namespace sweep {
@@ -95,10 +96,10 @@ class Sheet {
   }
 
   /// Newton steps from x along the unit direction `dir` (in the face's parameters) to a root of g,
-  /// each at most a hundredth of the domain (so that a flat stretch of g does not throw the point
+  /// each at most Settings::envelope_newton_step of the domain (so that a flat stretch of g does not throw the point
   /// onto another arc).
   Vector2d onto_line(const Vector2d& x, const Vector2d& dir, const PoseJet& pose) const {
-    const double h = 1e-7 * scale_.norm(), most = 0.01 * scale_.norm();
+    const double h = 1e-7 * scale_.norm(), most = Settings::envelope_newton_step * scale_.norm();
     double lambda = 0;
     for (int it = 0; it < 60; ++it) {
       const Vector2d p = x + lambda * dir;

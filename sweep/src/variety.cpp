@@ -143,10 +143,10 @@ GrazingSet grazing_set(const Patch& face, const StageMotion& motion, double t, i
                                                      face.lo(1) + (face.hi(1) - face.lo(1)) * j / n)));
   if (!(scale > 0)) return out;  // the face does not move, or grazes everywhere
   find_vanishing_sides(face, pose, n, scale, out, field);
-  // the zero set, traced with the values read just inside vanishing sides; branches whose saddle
-  // has |g| below 1e-9 of the largest meet there (they cross)
+  // the zero set, traced with the values read just inside vanishing sides; branches meet at a
+  // saddle where g is flat (Settings::grazing_crossing): they cross there
   out.curves = contour_chains([&field](const Vector2d& s) { return field.at(s); }, face.lo(0), face.hi(0), face.lo(1),
-                              face.hi(1), odd_below(n), odd_below(n - 2), 1e-11 * scale);
+                              face.hi(1), odd_below(n), odd_below(n - 2), Settings::grazing_crossing * scale);
   return out;
 }
 

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "sweep/entity.hpp"
+#include "sweep/settings.hpp"
 #include "sweep/stage_motion.hpp"
 
 namespace sweep {
@@ -66,6 +67,7 @@ struct GrazingFamily {
 /// evenly spaced instants and at the bisection points of events, each event located to
 /// Settings::grazing_event_resolution times the range. Events are those of the traced sets: a
 /// feature smaller than a grid cell is seen when it grows past one.
-GrazingFamily grazing_family(const Patch& face, const StageMotion& motion, int samples = 32, int n = 64);
+GrazingFamily grazing_family(const Patch& face, const StageMotion& motion, int samples = Settings::grazing_instants,
+                             int n = Settings::grazing_grid);
 
 }  // namespace sweep

@@ -58,6 +58,19 @@ struct Settings {
   /// The most events one face's grazing set may have over a range (a set that changes more often
   /// is reported incomplete).
   static constexpr int grazing_events_max = 256;
+  /// Instants a grazing set is traced at over a range (besides the events' bisections), and the
+  /// cells per side of the grid it is traced on.
+  static constexpr int grazing_instants = 32;
+  static constexpr int grazing_grid = 64;
+  /// The flat value of a grazing set's tracer (contour.hpp), x the largest |g| on the face: two
+  /// arcs cross where |g| at the saddle of a cell is below a hundred times it.
+  static constexpr double grazing_crossing = 1e-11;
+  /// Tracks and grazing sides over less than this fraction of the range (slivers between two
+  /// events) make no candidate.
+  static constexpr double grazing_sliver = 1e-6;
+  /// The longest Newton step that puts a point of an envelope sheet on its grazing arc (x the
+  /// face's parameter domain).
+  static constexpr double envelope_newton_step = 0.01;
 
   // --- faces swept by a curve under a helical joint, fitted to grids of exact points
   /// The grid's intervals per side: the first tried, doubled up to the last while the fit's

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "sweep/entity.hpp"
+#include "sweep/settings.hpp"
 #include "sweep/stage_motion.hpp"
 
 namespace sweep {
@@ -64,6 +65,6 @@ struct GrazingSet {
 /// than a grid cell may be joined; where two cross inside a cell they end at the crossing). The
 /// counts of cells are odd, so that lines of symmetry of a face (its half and quarter turns) fall
 /// inside cells rather than on grid lines.
-GrazingSet grazing_set(const Patch& face, const StageMotion& motion, double t, int n = 64);
+GrazingSet grazing_set(const Patch& face, const StageMotion& motion, double t, int n = Settings::grazing_grid);
 
 }  // namespace sweep
