@@ -30,15 +30,6 @@ PatchPtr side_curve(const PatchPtr& face, int side, const std::string& what) {
                                  PatchForm{}, what);
 }
 
-/// The patch over t in [t0, t1] only.
-PatchPtr over_times(const PatchPtr& sheet, double t0, double t1) {
-  auto out = std::make_shared<Patch>(2, std::vector<double>{sheet->lo(0), t0}, std::vector<double>{sheet->hi(0), t1},
-                                     [sheet](const double* s) { return sheet->eval(s); }, sheet->form(),
-                                     sheet->what(), sheet->orientation());
-  out->fixed = sheet->fixed;
-  return out;
-}
-
 /// The envelope sheets of the sides of a face's domain that graze all along over spans of t (a
 /// seam line of a face grazing, not a pole), each seam once.
 void add_side_sheets(const PatchPtr& face, const std::shared_ptr<const StageMotion>& motion,
@@ -57,7 +48,8 @@ void add_side_sheets(const PatchPtr& face, const std::shared_ptr<const StageMoti
     const std::string what = "the side " + std::string(names[side]) + " of " + face->what() +
                              " grazing all along, swept over t in [" + number(span.t0) + ", " + number(span.t1) + "]";
     const PatchPtr curve = side_curve(face, side, what);
-    out.push_back({"interior", over_times(swept_curve(curve, motion, what), span.t0, span.t1), {},
+    out.push_back({"interior",
+                   patch_part(swept_curve(curve, motion, what), {curve->lo(0), span.t0}, {curve->hi(0), span.t1}), {},
                    {{"s", {curve->lo(0), curve->hi(0)}}, {"t", {span.t0, span.t1}}}});
   }
 }

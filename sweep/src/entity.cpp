@@ -73,6 +73,13 @@ Eigen::Vector2d parameter_periods(const Patch& p) {
   return period;
 }
 
+PatchPtr patch_part(const PatchPtr& p, const std::vector<double>& lo, const std::vector<double>& hi) {
+  auto part = std::make_shared<Patch>(p->dim(), lo, hi, [p](const double* s) { return p->eval(s); }, p->form(),
+                                      p->what(), p->orientation());
+  part->fixed = p->fixed;
+  return part;
+}
+
 Eigen::Vector2d wrapped_parameters(const Patch& p, Eigen::Vector2d s, const Eigen::Vector2d& period) {
   for (int k = 0; k < 2; ++k)
     if (period[k] > 0) s[k] = p.lo(k) + std::fmod(std::fmod(s[k] - p.lo(k), period[k]) + period[k], period[k]);

@@ -226,13 +226,6 @@ PatchFace patch_face(const Patch& p, double tol) {
 
 namespace {
 
-/// The patch over the part [lo, hi] of its domain.
-Patch part_of(const PatchPtr& p, const std::vector<double>& lo, const std::vector<double>& hi) {
-  Patch part(2, lo, hi, [p](const double* s) { return p->eval(s); }, p->form(), p->what(), p->orientation());
-  part.fixed = p->fixed;
-  return part;
-}
-
 void collect_faces(const PatchPtr& p, double tol, int splits_left, std::vector<PatchFace>& out) {
   PatchFace f = patch_face(*p, tol);
   if (f.error <= tol || f.exact || splits_left <= 0) {
@@ -249,18 +242,16 @@ void collect_faces(const PatchPtr& p, double tol, int splits_left, std::vector<P
   std::vector<double> hi_a = hi, lo_b = lo;
   hi_a[std::size_t(k)] = mid;
   lo_b[std::size_t(k)] = mid;
-  collect_faces(std::make_shared<Patch>(part_of(p, lo, hi_a)), tol, splits_left - 1, out);
-  collect_faces(std::make_shared<Patch>(part_of(p, lo_b, hi)), tol, splits_left - 1, out);
+  collect_faces(patch_part(p, lo, hi_a), tol, splits_left - 1, out);
+  collect_faces(patch_part(p, lo_b, hi), tol, splits_left - 1, out);
 }
 
 }  // namespace
 
 std::vector<PatchFace> patch_faces(const Patch& patch, double tol, int max_splits) {
   if (patch.dim() != 2) throw ComputeError("patch_faces: '" + patch.what() + "' is not a surface patch");
-  std::vector<double> lo{patch.lo(0), patch.lo(1)}, hi{patch.hi(0), patch.hi(1)};
-  auto whole = std::make_shared<Patch>(2, lo, hi, [&patch](const double* s) { return patch.eval(s); }, patch.form(),
-                                       patch.what(), patch.orientation());
-  whole->fixed = patch.fixed;
+  // the caller keeps the patch for the whole call; its parts refer to it
+  const PatchPtr whole(&patch, [](const Patch*) {});
   std::vector<PatchFace> out;
   collect_faces(whole, tol, max_splits, out);
   return out;

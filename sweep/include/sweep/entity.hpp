@@ -94,6 +94,9 @@ std::vector<int> bounding_sides(const Patch& p, double tol, int n = 64);
 /// on itself across it (its sides u = lo and u = hi coincide, judged on 17 points of each to 1e-12
 /// of the patch's size), else 0.
 Eigen::Vector2d parameter_periods(const Patch& p);
+/// The patch over the part [lo, hi] of its domain: the same map, form, name, orientation and fixed
+/// parameters.
+PatchPtr patch_part(const PatchPtr& p, const std::vector<double>& lo, const std::vector<double>& hi);
 /// Parameters of the domain's cover (shifted by whole periods) moved back into the domain.
 Eigen::Vector2d wrapped_parameters(const Patch& p, Eigen::Vector2d s, const Eigen::Vector2d& period);
 
