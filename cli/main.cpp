@@ -25,10 +25,11 @@ const char* kUsage =
     "\n"
     "commands:\n"
     "  run SPEC [-o OUT] [--report R.json] [--set PATH=VALUE]... [--verify] [--time-limit S]\n"
-    "      [--no-direct-builds]\n"
+    "      [--no-direct-builds] [--general-motions]\n"
     "      compute the swept solid; OUT by extension: .step/.stp, .brep, .stl (binary), .off;\n"
     "      --time-limit stops the run after S seconds (default 600; status failed, exit 3)\n"
     "      --no-direct-builds builds balls under screws and graph extrusions by the general pipeline too\n"
+    "      --general-motions builds other solids under paths from their candidate patches (in progress)\n"
     "  check SPEC [--set PATH=VALUE]...\n"
     "      validate the spec only\n"
     "  varieties SPEC [-o V.json] [--faces F.brep|F.step] [--svg F.svg] [--set PATH=VALUE]... [--time-limit S]\n"
@@ -52,6 +53,7 @@ struct Args {
   bool verify = false;
   double time_limit = sweep::cli::kDefaultTimeLimit;  ///< seconds
   bool direct_builds = true;
+  bool general_motions = false;
 };
 
 Args parse_args(int argc, char** argv, bool allow_output) {
@@ -67,6 +69,7 @@ Args parse_args(int argc, char** argv, bool allow_output) {
     else if (allow_output && s == "--faces") a.faces = value("--faces");
     else if (allow_output && s == "--svg") a.svg = value("--svg");
     else if (allow_output && s == "--no-direct-builds") a.direct_builds = false;
+    else if (allow_output && s == "--general-motions") a.general_motions = true;
     else if (allow_output && s == "--time-limit") a.time_limit = sweep::cli::parse_time_limit(value("--time-limit"));
     else if (!s.empty() && s[0] == '-') throw sweep::InputError(s, "unknown option '" + s + "'");
     else if (a.spec.empty()) a.spec = s;
@@ -108,6 +111,7 @@ int cmd_run(int argc, char** argv) {
   sweep::occt::RunOptions opt;
   opt.verify = a.verify;
   opt.direct_builds = a.direct_builds;
+  opt.settings.general_motions = a.general_motions;
   if (sweep::cli::stderr_is_terminal()) opt.progress = [](const std::string& line) { std::cerr << "sweepvol: " << line << "\n"; };
   opt.stop = sweep::cli::stop_request(a.time_limit);
   sweep::occt::RunResult r = sweep::occt::run_sweep(s, opt);

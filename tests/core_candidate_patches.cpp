@@ -67,3 +67,55 @@ TEST_CASE("Candidate patches: seed 001's rolling cylinder sweeps the strips of i
   CHECK(minus == Approx(strip).epsilon(1e-7));
   CHECK(plus == Approx(strip).epsilon(2e-6));
 }
+
+TEST_CASE("Candidate patches: the planes that sweeps lie in", "[variety]") {
+  const Spec spec = parse_spec(
+      R"({"sweep": 1, "entity": {"kind": "box", "min": [-0.5, -0.4, -1], "max": [0.5, 0.4, 1]},
+          "motion": {"kind": "path", "t": [0, 1], "translate": ["0", "4*t", "0"],
+          "rotate": [{"axis": [1, 0, 0], "angle": "pi*t"}]}})",
+      "");
+  const EntityPtr box = make_entity(spec.entity);
+  REQUIRE(box);
+  int in_planes = 0, limits_in_planes = 0;
+  for (const CandidatePatch& c : candidate_patches(*box, spec.motion.stage)) {
+    const std::optional<PatchPlane> p = patch_plane(*c.patch, 1e-9);
+    if (c.type == "limit") {
+      // every face of a box is flat
+      REQUIRE(p);
+      limits_in_planes += std::abs(std::abs(p->normal.x()) - 1) < 1e-12;
+      continue;
+    }
+    if (!p) continue;
+    // the motion keeps the planes x = const only: the edges lying in x = +-0.5 sweep regions of them
+    ++in_planes;
+    CHECK(std::abs(p->normal.x()) == Approx(1).margin(1e-12));
+    CHECK(std::abs(p->offset) == Approx(0.5).margin(1e-12));
+  }
+  CHECK(limits_in_planes == 4);
+  CHECK(in_planes == 8);  // the edges along y and along z of both faces x = +-0.5
+  // a curved sheet, a patch that collapses onto a line, and a skew one: no plane
+  const Patch cyl(2, {0.0, 0.0}, {M_PI, 1.0},
+                  [](const double* s) {
+                    return PatchPoint{Eigen::Vector3d(std::cos(s[0]), std::sin(s[0]), s[1]), Eigen::Vector3d::Zero(),
+                                      Eigen::Vector3d::Zero()};
+                  },
+                  PatchForm{}, "half a cylinder");
+  CHECK_FALSE(patch_plane(cyl, 1e-9));
+  const Patch line(2, {0.0, 0.0}, {1.0, 1.0},
+                   [](const double* s) {
+                     return PatchPoint{Eigen::Vector3d(s[0] + s[1], 2 * (s[0] + s[1]), 0), Eigen::Vector3d::Zero(),
+                                       Eigen::Vector3d::Zero()};
+                   },
+                   PatchForm{}, "a patch on a line");
+  CHECK_FALSE(patch_plane(line, 1e-9));
+  const Patch saddle(2, {-1.0, -1.0}, {1.0, 1.0},
+                     [](const double* s) {
+                       return PatchPoint{Eigen::Vector3d(s[0], s[1], 1e-6 * s[0] * s[1]), Eigen::Vector3d::Zero(),
+                                         Eigen::Vector3d::Zero()};
+                     },
+                     PatchForm{}, "a nearly flat saddle");
+  CHECK_FALSE(patch_plane(saddle, 1e-9));
+  const std::optional<PatchPlane> loose = patch_plane(saddle, 1e-5);
+  REQUIRE(loose);
+  CHECK(std::abs(loose->normal.z()) == Approx(1).margin(1e-9));
+}

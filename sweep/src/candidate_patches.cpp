@@ -1,5 +1,6 @@
 #include "sweep/candidate_patches.hpp"
 
+#include <Eigen/SVD>
 #include <cstdio>
 
 #include "sweep/envelope.hpp"
@@ -91,6 +92,29 @@ std::vector<CandidatePatch> candidate_patches(const Entity& entity, const std::s
     add_side_sheets(face, motion, family, out);
   }
   return out;
+}
+
+std::optional<PatchPlane> patch_plane(const Patch& p, double tol, int n) {
+  if (p.dim() != 2) return std::nullopt;
+  std::vector<Eigen::Vector3d> pts;
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (int a = 0; a <= n; ++a)
+    for (int b = 0; b <= n; ++b) {
+      pts.push_back(p.eval(p.lo(0) + (p.hi(0) - p.lo(0)) * a / n, p.lo(1) + (p.hi(1) - p.lo(1)) * b / n).x);
+      mean += pts.back();
+    }
+  mean /= double(pts.size());
+  Eigen::MatrixXd m(pts.size(), 3);
+  for (std::size_t k = 0; k < pts.size(); ++k) m.row(Eigen::Index(k)) = (pts[k] - mean).transpose();
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(m, Eigen::ComputeThinV);
+  const Eigen::Vector3d sv = svd.singularValues();
+  const double spread = sv(0) / std::sqrt(double(pts.size()));
+  // (the points span a plane: their second direction spreads them well beyond the tolerance)
+  if (!(sv(1) / std::sqrt(double(pts.size())) > 1e3 * tol) || !(spread > 0)) return std::nullopt;
+  const Eigen::Vector3d normal = svd.matrixV().col(2).normalized();
+  for (const auto& x : pts)
+    if (!(std::abs(normal.dot(x - mean)) <= tol)) return std::nullopt;
+  return PatchPlane{normal, normal.dot(mean)};
 }
 
 double patch_area(const Patch& p, int n) {

@@ -198,9 +198,9 @@ PointTest stage_membership(const StageInput& in) {
 namespace {
 
 /// The cells of the arrangement in the swept set.
-std::vector<TopoDS_Solid> swept_cells(const StageInput& in, const BOPAlgo_MakerVolume& mv, StageRecord& record) {
-  const auto member = stage_membership(in);
-  const double size = in.size;
+std::vector<TopoDS_Solid> swept_cells(const PointTestMaker& membership, double size, const BOPAlgo_MakerVolume& mv,
+                                      StageRecord& record) {
+  const PointTest member = membership();
   std::vector<TopoDS_Solid> kept;
   int ncells = 0;
   for (TopExp_Explorer ex(mv.Shape(), TopAbs_SOLID); ex.More(); ex.Next()) {
@@ -281,6 +281,11 @@ std::vector<TopoDS_Face> split_faces_of(const BOPAlgo_MakerVolume& mv, const std
 
 TopoDS_Shape stage_cells_solid(const StageInput& in, double fit_err, Candidates& cand, DroppedFaces& dropped,
                                StageRecord& record) {
+  return cells_solid([&in]() { return stage_membership(in); }, in.size, fit_err, cand, dropped, record);
+}
+
+TopoDS_Shape cells_solid(const PointTestMaker& member, double size, double fit_err, Candidates& cand,
+                         DroppedFaces& dropped, StageRecord& record) {
   Seconds sec{record.seconds};
   // OCCT's cell builder can leave shells it cannot orient and lose the cells they bound, or build
   // no cell at all, or fail after splitting the faces: then the solid is built from the split faces
@@ -288,8 +293,7 @@ TopoDS_Shape stage_cells_solid(const StageInput& in, double fit_err, Candidates&
   // just off both of its sides. When those leave free edges where candidates that pruning dropped
   // lie (a thin strip of boundary on a face that is internal almost everywhere), such candidates
   // are restored and the arrangement is made again, at most three times.
-  const double fuzzy = std::max(Settings::sewing_gap * in.size, 10 * fit_err);
-  const PointTestMaker member = [&in]() { return stage_membership(in); };
+  const double fuzzy = std::max(Settings::sewing_gap * size, 10 * fit_err);
   BOPAlgo_MakerVolume mv;
   TopoDS_Shape result;
   std::string arrangement_error;
@@ -309,7 +313,7 @@ TopoDS_Shape stage_cells_solid(const StageInput& in, double fit_err, Candidates&
     std::vector<TopoDS_Edge> free_edges;
     if (mv.HasErrors() || unable_to_orient(mv) || !TopExp_Explorer(mv.Shape(), TopAbs_SOLID).More()) {
       const TopoDS_Shape bounded =
-          solid_from_boundary_faces(split_faces_of(mv, cand.faces), member, in.size, nullptr, &free_edges);
+          solid_from_boundary_faces(split_faces_of(mv, cand.faces), member, size, nullptr, &free_edges);
       if (valid_and_closed(bounded)) {
         for (TopExp_Explorer ex(bounded, TopAbs_SOLID); ex.More(); ex.Next()) ++record.cells;
         result = bounded;
@@ -318,7 +322,7 @@ TopoDS_Shape stage_cells_solid(const StageInput& in, double fit_err, Candidates&
     // (not after a failed arrangement: OCCT's solid builder can then run for many minutes without
     // polling the stop request)
     const int restored = result.IsNull() && round < 3 && !free_edges.empty() && arrangement_error.empty()
-                             ? restore_near_edges(free_edges, in.size, dropped, cand)
+                             ? restore_near_edges(free_edges, size, dropped, cand)
                              : 0;
     sec["classification"] += since(t_bnd);
     if (restored == 0) break;
@@ -327,7 +331,7 @@ TopoDS_Shape stage_cells_solid(const StageInput& in, double fit_err, Candidates&
   if (result.IsNull() && !arrangement_error.empty()) throw ComputeError(arrangement_error);
   // Otherwise: classify the cells.
   const auto t_cls = Clock::now();
-  const std::vector<TopoDS_Solid> kept = result.IsNull() ? swept_cells(in, mv, record) : std::vector<TopoDS_Solid>();
+  const std::vector<TopoDS_Solid> kept = result.IsNull() ? swept_cells(member, size, mv, record) : std::vector<TopoDS_Solid>();
   sec["classification"] += since(t_cls);
   const auto t_build = Clock::now();
   if (result.IsNull()) result = union_of_cells(kept);

@@ -163,6 +163,10 @@ int restore_near_edges(const std::vector<TopoDS_Edge>& edges, double size, Dropp
 /// faces that separate the set from its complement. Throws ComputeError when neither can be built.
 TopoDS_Shape stage_cells_solid(const StageInput& in, double fit_err, Candidates& cand, DroppedFaces& dropped,
                                StageRecord& record);
+/// The same for any motion: the arrangement of `cand`'s faces (fuzzy from the model `size` and the
+/// candidates' fit error), its cells classified by `member`, which never looks at the solid.
+TopoDS_Shape cells_solid(const PointTestMaker& member, double size, double fit_err, Candidates& cand,
+                         DroppedFaces& dropped, StageRecord& record);
 
 /// One stage: candidate varieties, pruning (with `prune`; `pruned` receives how many of how
 /// many), the arrangement and its cells. With `direct_builds`, the shapes that have a direct

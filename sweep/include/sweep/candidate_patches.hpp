@@ -7,6 +7,7 @@
 /// screw's included; the bridge makes faces of them.
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -28,6 +29,18 @@ struct CandidatePatch {
 /// interior ones. `check` is called between patches (a stop request may throw from it).
 std::vector<CandidatePatch> candidate_patches(const Entity& entity, const std::shared_ptr<const StageMotion>& motion,
                                               const std::function<void()>& check = {});
+
+/// A plane: its points x with normal . x = offset (normal of unit length).
+struct PatchPlane {
+  Eigen::Vector3d normal;
+  double offset = 0;
+};
+
+/// The plane a two-parameter patch lies in, when every point of an n x n grid of its domain lies
+/// within `tol` of one plane and the points span it (not all on one line); empty otherwise. Under a
+/// motion that keeps a plane, the sweeps of curves lying in it fill regions of it (folded where a
+/// curve moves along itself), which no single face holds.
+std::optional<PatchPlane> patch_plane(const Patch& patch, double tol, int n = 8);
 
 /// The area of a two-parameter patch: the 4-point Gauss rule on n x n panels of its domain.
 double patch_area(const Patch& patch, int n = 32);

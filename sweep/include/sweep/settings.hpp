@@ -72,6 +72,13 @@ struct Settings {
   /// face's parameter domain).
   static constexpr double envelope_newton_step = 0.01;
 
+  // --- solids under general motions (the candidate patches' arrangement)
+  /// Solids other than balls under a path that is no screw are built from their candidate patches
+  /// (off: they fail as not supported yet).
+  bool general_motions = false;
+  /// How many times a patch that no single fitted B-spline holds is halved (patch_faces).
+  static constexpr int patch_face_splits = 4;
+
   // --- faces swept by a curve under a helical joint, fitted to grids of exact points
   /// The grid's intervals per side: the first tried, doubled up to the last while the fit's
   /// measured error exceeds its tolerance.
