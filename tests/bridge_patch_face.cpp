@@ -4,6 +4,8 @@
 #include <BRepAdaptor_Surface.hxx>
 #include <BRepCheck_Analyzer.hxx>
 #include <BRepGProp.hxx>
+#include <BRep_Tool.hxx>
+#include <GeomAPI_ProjectPointOnSurf.hxx>
 #include <GProp_GProps.hxx>
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -139,5 +141,67 @@ TEST_CASE("Patch faces: primitives as the solids of their patch faces") {
       BRepGProp::VolumeProperties(solid, g);
       CHECK(std::abs(g.Mass() - volume) <= 1e-9 * volume);
     }
+  }
+}
+
+TEST_CASE("Patch faces: ruled patches become ruled faces between their fitted sides") {
+  using sweep::Patch;
+  using sweep::PatchPoint;
+  // a line turning as it slides (a twisted ruled sheet), and one whose length shrinks to nothing as
+  // sqrt(1 - t) at its end (a grazing line leaving a face through a corner moves so)
+  const double tol = 1e-8;
+  const Patch twisted(2, {0.0, 0.0}, {1.0, 2.0},
+                      [](const double* s) {
+                        const double a = 0.9 * s[1];
+                        const Eigen::Vector3d c(0.3 * s[1], std::sin(s[1]), 0.5 * s[1] * s[1]);
+                        return PatchPoint{c + (s[0] - 0.5) * Eigen::Vector3d(std::cos(a), std::sin(a), 0.2),
+                                          Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+                      },
+                      sweep::PatchForm{}, "a twisted ruled sheet");
+  const Patch closing(2, {0.0, 0.0}, {1.0, 1.0},
+                      [](const double* s) {
+                        const double w = std::sqrt(std::max(0.0, 1 - s[1]));
+                        const Eigen::Vector3d c(s[1], s[1] * s[1], 0);
+                        return PatchPoint{c + s[0] * w * Eigen::Vector3d(0.2, -0.3, 1), Eigen::Vector3d::Zero(),
+                                          Eigen::Vector3d::Zero()};
+                      },
+                      sweep::PatchForm{}, "a ruled sheet closing at its end");
+  for (const Patch* p : {&twisted, &closing}) {
+    INFO(p->what());
+    const sweep::occt::PatchFace f = sweep::occt::patch_face(*p, tol);
+    CHECK_FALSE(f.exact);
+    CHECK(f.error <= tol);
+    CHECK(BRepCheck_Analyzer(f.face).IsValid());
+    // a ruled surface (degree 1 across), within tol of patch points the fit never saw
+    const BRepAdaptor_Surface S(f.face);
+    REQUIRE(S.GetType() == GeomAbs_BSplineSurface);
+    CHECK(std::min(S.UDegree(), S.VDegree()) == 1);
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    double worst = 0;
+    for (int k = 0; k < 200; ++k) {
+      const double u = unit(rng), v = p->lo(1) + (p->hi(1) - p->lo(1)) * unit(rng);
+      const gp_Pnt x = sweep::occt::to_pnt(p->eval(u, v).x);
+      GeomAPI_ProjectPointOnSurf proj(x, BRep_Tool::Surface(f.face));
+      REQUIRE(proj.NbPoints() > 0);
+      worst = std::max(worst, proj.LowerDistance());
+    }
+    CHECK(worst <= 2 * tol);
+    // its area against the patch's points, triangulated finely (closer towards the end of v,
+    // where the closing sheet's width changes as a square root)
+    const int n = 800;
+    double area = 0;
+    auto at = [p, n](int i, int j) {
+      const double f = 1 - double(n - j) / n;
+      return p->eval(double(i) / n, p->lo(1) + (p->hi(1) - p->lo(1)) * (1 - (1 - f) * (1 - f))).x;
+    };
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) {
+        const Eigen::Vector3d a = at(i, j), b = at(i + 1, j), c = at(i + 1, j + 1), d = at(i, j + 1);
+        area += 0.5 * ((b - a).cross(c - a).norm() + (c - a).cross(d - a).norm());
+      }
+    GProp_GProps g;
+    BRepGProp::SurfaceProperties(f.face, g, 1e-10);
+    CHECK(std::abs(g.Mass()) == Approx(area).epsilon(1e-5));
   }
 }

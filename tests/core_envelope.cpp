@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "sweep/envelope.hpp"
+#include "sweep/settings.hpp"
 #include "util/core_entities.hpp"
 
 using Eigen::Vector2d;
@@ -119,4 +120,37 @@ TEST_CASE("Envelope: a cylinder translated along a turning direction sweeps stri
   CHECK(areas[0] == Approx(2).epsilon(1e-7));
   CHECK(areas[1] == Approx(6).epsilon(1e-7));
   CHECK_THROWS(envelope_patch(cyl->faces()[0], path, GrazingTrack{}, "empty"));
+}
+
+TEST_CASE("Envelope: a box face's sheets between close events stay on the face and on its grazing lines", "[variety]") {
+  // the wandering path turns the grazing line of the box's min y face through a corner twice in
+  // its first 0.06 of t: short tracks, which the range's instants alone leave with one or two
+  const EntityPtr box = entity_of(R"({"kind": "box", "min": [-0.3, -0.2, -0.5], "max": [0.3, 0.2, 0.5]})");
+  REQUIRE(box);
+  const PathMotion path = sweep_test::wandering_path();
+  auto motion = std::make_shared<const PathMotion>(path);
+  const PatchPtr face = box->faces()[2];  // min y
+  REQUIRE(std::abs(face->eval(0.5 * (face->lo(0) + face->hi(0)), 0.5 * (face->lo(1) + face->hi(1))).x.y() + 0.2) < 1e-12);
+  const GrazingFamily f = grazing_family(*face, *motion);
+  int short_tracks = 0;
+  for (const GrazingTrack& tr : f.tracks) {
+    if (!(tr.t.back() - tr.t.front() > 1e-6)) continue;
+    CHECK(int(tr.t.size()) >= Settings::grazing_span_intervals + 1);
+    short_tracks += tr.t.back() - tr.t.front() < 0.1;
+    const PatchPtr sheet = envelope_patch(face, motion, tr, "sheet");
+    double off_face = 0, off_line = 0;
+    for (int i = 0; i <= 20; ++i)
+      for (int j = 0; j <= 20; ++j) {
+        const double t = tr.t.front() + (tr.t.back() - tr.t.front()) * j / 20;
+        const Vector3d y = motion->transform(t).inverse() * sheet->eval(i / 20.0, t).x;
+        off_face = std::max({off_face, std::abs(y.y() + 0.2), std::abs(y.x()) - 0.3, std::abs(y.z()) - 0.5});
+        // on the grazing line: the velocity at the point lies in the face's plane
+        const PoseJet P = motion->pose(t);
+        const Vector3d v = P.R.transpose() * (P.dR * y + P.dp);
+        off_line = std::max(off_line, std::abs(v.y()) / v.norm());
+      }
+    CHECK(off_face < 1e-12);
+    CHECK(off_line < 1e-9);
+  }
+  CHECK(short_tracks >= 1);
 }

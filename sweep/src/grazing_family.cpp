@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <tuple>
 
@@ -114,6 +115,37 @@ std::vector<Instant> traced_instants(const Patch& face, const StageMotion& motio
     if (out.complete && next.t > seq.back().t) seq.push_back(next);
   }
   return seq;
+}
+
+/// The instants with every span between events traced at least Settings::grazing_span_intervals + 1
+/// times (instants added evenly where the range's samples leave a span short): the sheets
+/// interpolate their arcs in t, and a short span between close events may hold no sample at all.
+std::vector<Instant> filled_spans(const Patch& face, const StageMotion& motion, std::vector<Instant> seq, int n) {
+  std::vector<Instant> out;
+  const int want = Settings::grazing_span_intervals;
+  for (std::size_t a = 0; a < seq.size();) {
+    std::size_t b = a + 1;
+    while (b < seq.size() && !seq[b].starts_span) ++b;
+    const double t0 = seq[a].t, t1 = seq[b - 1].t;
+    const Structure structure = seq[a].structure;
+    std::vector<Instant> span(std::make_move_iterator(seq.begin() + std::ptrdiff_t(a)),
+                              std::make_move_iterator(seq.begin() + std::ptrdiff_t(b)));
+    if (int(span.size()) < want + 1 && t1 > t0) {
+      for (int k = 1; k < want; ++k) {
+        const double t = t0 + (t1 - t0) * k / want;
+        bool near = false;
+        for (const Instant& in : span) near = near || std::abs(in.t - t) < 0.25 * (t1 - t0) / want;
+        if (near) continue;
+        Instant in = trace(face, motion, t, n);
+        if (in.structure != structure) continue;  // (an event the bisection did not separate)
+        span.push_back(std::move(in));
+      }
+      std::sort(span.begin() + 1, span.end(), [](const Instant& x, const Instant& y) { return x.t < y.t; });
+    }
+    for (auto& in : span) out.push_back(std::move(in));
+    a = b;
+  }
+  return out;
 }
 
 /// Where the points of an arc (at most 32 of them) go in time dt along the drift at `pose`.
@@ -243,7 +275,8 @@ void collect_side_spans(const std::vector<Instant>& seq, GrazingFamily& out) {
 
 GrazingFamily grazing_family(const Patch& face, const StageMotion& motion, int samples, int n) {
   GrazingFamily out;
-  const std::vector<Instant> seq = traced_instants(face, motion, std::max(samples, 1), n, out);
+  const std::vector<Instant> seq =
+      filled_spans(face, motion, traced_instants(face, motion, std::max(samples, 1), n, out), n);
   const Vector2d scale(face.hi(0) - face.lo(0), face.hi(1) - face.lo(1)), period = parameter_periods(face);
   std::vector<GrazingTrack> span;
   for (const Instant& in : seq) {

@@ -7,6 +7,8 @@
 #include <BRepLProp_SLProps.hxx>
 #include <BRep_Tool.hxx>
 #include <GeomAPI_PointsToBSpline.hxx>
+#include <GeomFill.hxx>
+#include <TColStd_Array1OfReal.hxx>
 #include <GeomAPI_ProjectPointOnSurf.hxx>
 #include <Geom_BSplineCurve.hxx>
 #include <Geom_BSplineSurface.hxx>
@@ -162,6 +164,86 @@ double measured_error(const Patch& p, const TopoDS_Face& face, bool own_paramete
   return e;
 }
 
+/// The parameter (0 or 1) along which the patch runs straight (a ruled sheet: a line of a face, or a
+/// straight edge, carried by a motion), to within `eps`; -1 when neither does.
+int straight_parameter(const Patch& p, double eps) {
+  for (int k = 0; k < 2; ++k) {
+    bool straight = true;
+    for (int i = 0; i <= 8 && straight; ++i) {
+      const double w = p.lo(1 - k) + (p.hi(1 - k) - p.lo(1 - k)) * i / 8;
+      auto at = [&](double f) {
+        const double s = p.lo(k) + (p.hi(k) - p.lo(k)) * f;
+        return k == 0 ? p.eval(s, w).x : p.eval(w, s).x;
+      };
+      const Eigen::Vector3d a = at(0), b = at(1);
+      const Eigen::Vector3d d = b - a;
+      if (!(d.norm() > eps)) continue;  // (a side that collapses to a point)
+      for (double f : {0.25, 0.5, 0.75}) straight = straight && (at(f) - a).cross(d).norm() <= eps * d.norm();
+    }
+    if (straight) return k;
+  }
+  return -1;
+}
+
+/// The two sides of a ruled patch across its straight parameter k, fitted over one parameter f in
+/// [0, 1]: the other parameter at f is lo + (hi - lo) (1 - cos pi f) / 2, closer near both ends,
+/// where a grazing line's ends can move fast as it enters or leaves a face. False when a side does
+/// not fit.
+bool ruled_sides(const Patch& p, int k, double tol, int samples, Handle(Geom_BSplineCurve) sides[2]) {
+  TColStd_Array1OfReal params(1, samples + 1);
+  for (int i = 0; i <= samples; ++i) params.SetValue(i + 1, double(i) / samples);
+  for (int e = 0; e < 2; ++e) {
+    TColgp_Array1OfPnt pts(1, samples + 1);
+    const double s = e == 0 ? p.lo(k) : p.hi(k);
+    for (int i = 0; i <= samples; ++i) {
+      const double w = p.lo(1 - k) + (p.hi(1 - k) - p.lo(1 - k)) * 0.5 * (1 - std::cos(M_PI * i / samples));
+      pts.SetValue(i + 1, to_pnt(k == 0 ? p.eval(s, w).x : p.eval(w, s).x));
+    }
+    GeomAPI_PointsToBSpline fit(pts, params, 3, 8, GeomAbs_C2, 0.1 * tol);
+    if (!fit.IsDone()) return false;
+    sides[e] = fit.Curve();
+  }
+  return true;
+}
+
+/// The largest distance from patch points (an n x n grid, off the sides' samples) to the segment
+/// between the fitted sides at the same parameter: the ruled surface's error, measured without
+/// projecting onto it (which strays where the sides meet).
+double ruled_error(const Patch& p, int k, const Handle(Geom_BSplineCurve) sides[2], int n) {
+  double worst = 0;
+  for (int i = 0; i <= n; ++i) {
+    const double g = (i + 0.37) / (n + 1);  // (between the sides' samples)
+    const double w = p.lo(1 - k) + (p.hi(1 - k) - p.lo(1 - k)) * g;
+    const double f = std::acos(std::clamp(1 - 2 * g, -1.0, 1.0)) / M_PI;
+    const Eigen::Vector3d a = to_eigen(sides[0]->Value(f)), b = to_eigen(sides[1]->Value(f));
+    for (int j = 0; j <= n; ++j) {
+      const double s = p.lo(k) + (p.hi(k) - p.lo(k)) * j / n;
+      const Eigen::Vector3d x = k == 0 ? p.eval(s, w).x : p.eval(w, s).x;
+      const Eigen::Vector3d d = b - a;
+      const double along = d.squaredNorm() > 0 ? std::clamp((x - a).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
+      worst = std::max(worst, (x - (a + along * d)).norm());
+    }
+  }
+  return worst;
+}
+
+/// The face of a ruled patch within tol, with its measured error; null when none is.
+TopoDS_Face ruled_face(const Patch& p, double tol, double* error) {
+  const int k = straight_parameter(p, 1e-3 * tol);
+  if (k < 0) return {};
+  for (int samples : {64, 256, 1024}) {
+    Handle(Geom_BSplineCurve) sides[2];
+    if (!ruled_sides(p, k, tol, samples, sides)) return {};
+    const double e = ruled_error(p, k, sides, 24);
+    if (!(e <= tol)) continue;
+    BRepBuilderAPI_MakeFace mf(GeomFill::Surface(sides[0], sides[1]), 1e-3 * tol);
+    if (!mf.IsDone()) return {};
+    *error = e;
+    return mf.Face();
+  }
+  return {};
+}
+
 /// Turns the face so that its normal agrees with the patch's outward one at the patch's middle.
 TopoDS_Face oriented(const TopoDS_Face& face, const Patch& p) {
   const PatchPoint m = p.eval(0.5 * (p.lo(0) + p.hi(0)), 0.5 * (p.lo(1) + p.hi(1)));
@@ -202,6 +284,15 @@ PatchFace patch_face(const Patch& p, double tol) {
       if (!out.face.IsNull()) {
         out.error = measured_error(p, out.face, false);
         out.exact = true;
+      }
+    }
+    if (out.face.IsNull() || out.error > tol) {
+      double err = 0;
+      const TopoDS_Face ruled = ruled_face(p, tol, &err);
+      if (!ruled.IsNull()) {
+        out.face = ruled;
+        out.error = err;
+        out.exact = false;
       }
     }
     if (out.face.IsNull() || out.error > tol) {

@@ -62,6 +62,9 @@ struct Settings {
   /// cells per side of the grid it is traced on.
   static constexpr int grazing_instants = 32;
   static constexpr int grazing_grid = 64;
+  /// The fewest intervals a span between two events is traced at (instants are added evenly where
+  /// the range's instants leave fewer in it).
+  static constexpr int grazing_span_intervals = 8;
   /// The flat value of a grazing set's tracer (contour.hpp), x the largest |g| on the face: two
   /// arcs cross where |g| at the saddle of a cell is below a hundred times it.
   static constexpr double grazing_crossing = 1e-11;
