@@ -33,7 +33,7 @@ PatchPtr side_curve(const PatchPtr& face, int side, const std::string& what) {
 
 /// The envelope sheets of the sides of a face's domain that graze all along over spans of t (a
 /// seam line of a face grazing, not a pole), each seam once.
-void add_side_sheets(const PatchPtr& face, const std::shared_ptr<const StageMotion>& motion,
+void add_side_sheets(const PatchPtr& face, int face_index, const std::shared_ptr<const StageMotion>& motion,
                      const GrazingFamily& family, std::vector<CandidatePatch>& out) {
   const Eigen::Vector2d period = parameter_periods(*face);
   const double size = (side_point(*face, 0, 0) - side_point(*face, 2, 0.5)).norm() +
@@ -51,7 +51,7 @@ void add_side_sheets(const PatchPtr& face, const std::shared_ptr<const StageMoti
     const PatchPtr curve = side_curve(face, side, what);
     out.push_back({"interior",
                    patch_part(swept_curve(curve, motion, what), {curve->lo(0), span.t0}, {curve->hi(0), span.t1}), {},
-                   {{"s", {curve->lo(0), curve->hi(0)}}, {"t", {span.t0, span.t1}}}});
+                   {{"s", {curve->lo(0), curve->hi(0)}}, {"t", {span.t0, span.t1}}}, face_index});
   }
 }
 
@@ -64,19 +64,21 @@ std::vector<CandidatePatch> candidate_patches(const Entity& entity, const std::s
   };
   std::vector<CandidatePatch> out;
   const double lo = motion->lo(), hi = motion->hi();
+  const std::vector<PatchPtr>& faces = entity.faces();
   for (double t : {lo, hi})
-    for (const PatchPtr& face : entity.faces()) {
+    for (std::size_t k = 0; k < faces.size(); ++k) {
       poll();
       const std::string when = t == lo ? "start" : "end";
-      out.push_back({"limit", moved_patch(face, motion, t, face->what() + " at the " + when + " of the motion"),
-                     {{"t", t}}, {}});
+      out.push_back({"limit", moved_patch(faces[k], motion, t, faces[k]->what() + " at the " + when + " of the motion"),
+                     {{"t", t}}, {}, int(k)});
     }
   for (const PatchPtr& edge : entity.edges()) {
     poll();
     out.push_back({"boundary", swept_curve(edge, motion, edge->what() + " swept by the motion"), {},
                    {{"s", {edge->lo(0), edge->hi(0)}}, {"t", {lo, hi}}}});
   }
-  for (const PatchPtr& face : entity.faces()) {
+  for (std::size_t k = 0; k < faces.size(); ++k) {
+    const PatchPtr& face = faces[k];
     poll();
     const GrazingFamily family = grazing_family(*face, *motion);
     int arc = 0;
@@ -87,9 +89,9 @@ std::vector<CandidatePatch> candidate_patches(const Entity& entity, const std::s
       const std::string what = "grazing arc " + std::to_string(++arc) + " (n . v = 0) of " + face->what() +
                                " swept over t in [" + number(track.t.front()) + ", " + number(track.t.back()) + "]";
       out.push_back({"interior", envelope_patch(face, motion, track, what), {},
-                     {{"s", {0.0, 1.0}}, {"t", {track.t.front(), track.t.back()}}}});
+                     {{"s", {0.0, 1.0}}, {"t", {track.t.front(), track.t.back()}}}, int(k)});
     }
-    add_side_sheets(face, motion, family, out);
+    add_side_sheets(face, int(k), motion, family, out);
   }
   return out;
 }

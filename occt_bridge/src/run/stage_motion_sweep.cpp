@@ -25,6 +25,7 @@
 #include <cmath>
 #include <memory>
 
+#include "arrangement/general_candidates.hpp"
 #include "arrangement/stage_sweep.hpp"
 #include "base/internal.hpp"
 #include "base/stop.hpp"
@@ -328,51 +329,6 @@ void low_dimension_stage_sweep(const Spec& spec, const StageMotion& m, const Siz
   res.shape = std::make_shared<Shape>(finish_curve_or_surface(comp, dim + 1, size, fit_err, opt.verify, rep));
 }
 
-/// The planes in which candidate sweeps (not the entity's copies) lie: a motion that keeps a plane
-/// sweeps curves lying in it over regions of it, folded where a curve moves along itself. Each
-/// plane once.
-std::vector<PatchPlane> kept_planes(const std::vector<CandidatePatch>& patches, double tol) {
-  std::vector<PatchPlane> out;
-  for (const CandidatePatch& c : patches) {
-    if (c.type == "limit") continue;
-    const std::optional<PatchPlane> p = patch_plane(*c.patch, tol);
-    if (!p) continue;
-    bool known = false;
-    for (const PatchPlane& q : out)
-      known = known || (std::abs(std::abs(q.normal.dot(p->normal)) - 1) < 1e-12 &&
-                        std::abs(q.offset - (q.normal.dot(p->normal) > 0 ? 1 : -1) * p->offset) <= tol);
-    if (!known) out.push_back(*p);
-  }
-  return out;
-}
-
-/// Whether a patch lies in one of the planes (the plane's face holds it).
-bool on_kept_plane(const Patch& patch, const std::vector<PatchPlane>& planes, double tol) {
-  const std::optional<PatchPlane> p = patch_plane(patch, tol);
-  if (!p) return false;
-  for (const PatchPlane& q : planes)
-    if (std::abs(std::abs(q.normal.dot(p->normal)) - 1) < 1e-12 &&
-        std::abs(q.offset - (q.normal.dot(p->normal) > 0 ? 1 : -1) * p->offset) <= tol)
-      return true;
-  return false;
-}
-
-std::string plane_name(const PatchPlane& p) {
-  char b[160];
-  std::snprintf(b, sizeof b, "(%.6g, %.6g, %.6g) . x = %.6g", p.normal.x(), p.normal.y(), p.normal.z(), p.offset);
-  return b;
-}
-
-/// The square of the plane that covers the box (widened by a tenth): the plane's candidate face,
-/// of which the classification of the arrangement's cells keeps the swept region.
-TopoDS_Face plane_face(const PatchPlane& p, const Eigen::AlignedBox3d& box) {
-  const Eigen::Vector3d c = box.center();
-  const Eigen::Vector3d origin = c - (p.normal.dot(c) - p.offset) * p.normal;
-  const double r = 0.55 * box.sizes().norm() + 1e-9;
-  const gp_Pln plane(to_pnt(origin), gp_Dir(p.normal.x(), p.normal.y(), p.normal.z()));
-  return BRepBuilderAPI_MakeFace(plane, -r, r, -r, r).Face();
-}
-
 /// A solid under a general one-parameter motion (the engine of seed 001): the core's candidate
 /// patches made faces, their arrangement, its cells kept by the search over t (which never looks
 /// at the solid), judged by the verdict against the same search.
@@ -388,36 +344,8 @@ void general_solid_sweep(const Spec& spec, const StageMotion& m, const Sizing& s
   stage.stage = 1;
   const auto t_var = Clock::now();
   if (opt.progress) opt.progress("candidate varieties");
-  Candidates cand;
-  const std::vector<CandidatePatch> patches =
-      candidate_patches(*sizing.entity.core, spec.motion.stage, [] { check_stop(); });
-  const Eigen::AlignedBox3d reach = stage_swept_box(box_of(raw), m);
-  const std::vector<PatchPlane> planes = kept_planes(patches, Settings::resolution * size);
-  for (const PatchPlane& plane : planes) {
-    Variety v;
-    v.stage = 1;
-    v.type = "interior";
-    v.what = "the plane " + plane_name(plane) + ", which the motion keeps: the region swept within it";
-    cand.add(cand.add_variety(std::move(v)), {plane_face(plane, reach)});
-  }
-  for (const CandidatePatch& c : patches) {
-    if (on_kept_plane(*c.patch, planes, Settings::resolution * size)) continue;
-    Variety v;
-    v.stage = 1;
-    v.type = c.type;
-    v.what = c.patch->what();
-    for (const auto& [name, value] : c.fixed) v.fixed[name] = value;
-    for (const auto& [name, range] : c.free) v.free[name] = {range.first, range.second};
-    const int id = cand.add_variety(std::move(v));
-    std::vector<TopoDS_Face> faces;
-    for (const PatchFace& pf : patch_faces(*c.patch, fit_tol, Settings::patch_face_splits)) {
-      faces.push_back(pf.face);
-      fit_err = std::max(fit_err, pf.error);
-      check_stop();
-    }
-    cand.add(id, faces, true);
-  }
-  cand.varieties = int(cand.vars.size());
+  Candidates cand =
+      general_candidates(*sizing.entity.core, spec.motion.stage, stage_swept_box(box_of(raw), m), size, fit_tol, fit_err);
   stage.varieties = cand.varieties;
   stage.add_seconds("varieties", since(t_var));
   drop_duplicate_candidates(cand, size);

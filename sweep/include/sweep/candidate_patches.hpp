@@ -23,6 +23,8 @@ struct CandidatePatch {
   /// Parameters it fixes with their values, and those it leaves free with their ranges.
   std::vector<std::pair<std::string, double>> fixed;
   std::vector<std::pair<std::string, std::pair<double, double>>> free;
+  /// For an end copy and an envelope sheet, the index of the entity's face it comes from (-1 else).
+  int face = -1;
 };
 
 /// Every candidate patch of `entity` under `motion`, limit varieties first, then boundary and
