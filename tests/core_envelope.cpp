@@ -154,3 +154,33 @@ TEST_CASE("Envelope: a box face's sheets between close events stay on the face a
   }
   CHECK(short_tracks >= 1);
 }
+
+TEST_CASE("Envelope: seed 001's circle sheets end exactly where the circle crosses the grazing seam lines", "[variety]") {
+  // the circle z = (4 / pi) cos(pi t) of the rolling cylinder's lateral face grazes for t in
+  // [0.2125, 0.7875]; its halves end where it crosses the lines x = +-0.5 (one of them the face's
+  // seam), at saddles of g, where no root across the arc says where the end is
+  const EntityPtr cyl = entity_of(R"({"kind": "cylinder", "base": [0, 0, -1], "axis": [0, 0, 1], "radius": 0.5, "height": 2})");
+  REQUIRE(cyl);
+  const Expr tr[3] = {texpr("0"), texpr("4*t"), texpr("0")};
+  auto motion = std::make_shared<const PathMotion>(0, 1, tr, std::vector<PathRotation>{{{texpr("1"), texpr("0"), texpr("0")}, texpr("pi*t")}});
+  const PatchPtr face = cyl->faces()[0];
+  const GrazingFamily f = grazing_family(*face, *motion);
+  int circles = 0;
+  for (const GrazingTrack& track : f.tracks) {
+    if (track.t.size() < 2) continue;  // an instant between two events
+    const PatchPtr sheet = envelope_patch(face, motion, track, "sheet");
+    const double tm = 0.5 * (track.t.front() + track.t.back());
+    const Vector3d mid = motion->transform(tm).inverse() * sheet->eval(0.5, tm).x;
+    if (std::abs(std::abs(mid.x()) - 0.5) < 1e-9) continue;  // a line x = +-0.5
+    ++circles;
+    double off = 0;
+    for (int i = 0; i <= 20; ++i)
+      for (int j = 0; j <= 20; ++j) {
+        const double t = track.t.front() + (track.t.back() - track.t.front()) * j / 20;
+        const Vector3d y = motion->transform(t).inverse() * sheet->eval(i / 20.0, t).x;
+        off = std::max({off, std::abs(std::hypot(y.x(), y.y()) - 0.5), std::abs(y.z() - 4 / M_PI * std::cos(M_PI * t))});
+      }
+    CHECK(off < 1e-10);
+  }
+  CHECK(circles == 2);
+}

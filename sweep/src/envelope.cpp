@@ -1,5 +1,6 @@
 #include "sweep/envelope.hpp"
 
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -62,7 +63,11 @@ class Sheet {
       }
     }
     Jet out;
-    out.x = onto_line(guess.x, dir, pose);
+    // the end of an arc at a crossing is the saddle of g there: across the arc, g vanishes along
+    // the other arc too, so no root on the line says where the end is
+    const bool at_crossing =
+        !closed_ && (s <= 0 || s >= 1) && ends_at_crossing(s <= 0.5 ? 0 : 1, guess.x, interpolated(0.5, t).x, pose);
+    out.x = at_crossing ? onto_saddle(guess.x, pose) : onto_line(guess.x, dir, pose);
     const Vector2d grad = gradient(out.x, pose), w = wrapped_parameters(*face_, out.x, period_);
     const double across = grad.dot(dir);
     if (!(std::abs(across) > 0)) return {out.x, guess.xs, guess.xt};
@@ -93,6 +98,36 @@ class Sheet {
   Vector2d onto_set(const Vector2d& x, const PoseJet& pose) const {
     const Vector2d grad = gradient(x, pose);
     return grad.squaredNorm() > 0 ? onto_line(x, grad.normalized(), pose) : x;
+  }
+
+  /// Whether end e of the arc (at `end`, `middle` a point of the arc away from its ends) is where it
+  /// crosses another arc: inside the domain, or on a side along which g vanishes too (a grazing
+  /// seam), where the gradient of g vanishes against its size in the arc's middle.
+  bool ends_at_crossing(int e, const Vector2d& end, const Vector2d& middle, const PoseJet& pose) const {
+    if (end_side_[e] == 4) return true;
+    if (end_side_[e] < 0) return false;
+    return gradient(end, pose).norm() < 1e-3 * gradient(middle, pose).norm();
+  }
+
+  /// Newton steps from x to a zero of the gradient of g (the saddle where two arcs cross), each at
+  /// most Settings::envelope_newton_step of the domain; x itself when the Hessian is singular.
+  Vector2d onto_saddle(const Vector2d& x, const PoseJet& pose) const {
+    const double most = Settings::envelope_newton_step * scale_.norm();
+    const Vector2d h(1e-5 * scale_.x(), 1e-5 * scale_.y());
+    Vector2d p = x;
+    for (int it = 0; it < 30; ++it) {
+      const Vector2d grad = gradient(p, pose);
+      Eigen::Matrix2d hess;
+      hess.col(0) = (gradient(p + Vector2d(h.x(), 0), pose) - gradient(p - Vector2d(h.x(), 0), pose)) / (2 * h.x());
+      hess.col(1) = (gradient(p + Vector2d(0, h.y()), pose) - gradient(p - Vector2d(0, h.y()), pose)) / (2 * h.y());
+      if (!(std::abs(hess.determinant()) > 0)) break;
+      Vector2d step = -hess.fullPivLu().solve(grad);
+      if (!step.allFinite()) break;
+      if (step.norm() > most) step *= most / step.norm();
+      p += step;
+      if (step.norm() < 1e-15 * scale_.norm()) break;
+    }
+    return p;
   }
 
   /// Newton steps from x along the unit direction `dir` (in the face's parameters) to a root of g,
@@ -145,7 +180,8 @@ class Sheet {
     std::size_t seg = 1;
     for (int i = 0; i < count; ++i) {
       if (!closed_ && (i == 0 || i == m_)) {
-        row.push_back(i == 0 ? pts.front() : pts[segments]);
+        const Vector2d end = i == 0 ? pts.front() : pts[segments];
+        row.push_back(ends_at_crossing(i == 0 ? 0 : 1, end, pts[segments / 2], pose) ? onto_saddle(end, pose) : end);
         continue;
       }
       const double target = length.back() * i / m_;
