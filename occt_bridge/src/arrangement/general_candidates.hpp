@@ -18,8 +18,8 @@ namespace sweep::occt {
 /// to their largest measured error). An end copy of a face is split along the edges of the
 /// envelope sheets that leave it (the face's grazing arcs at that end, where each sheet is tangent
 /// to it), and only its pieces that can bound the set are kept: those the motion leaves behind at
-/// the start, those it moves into at the end, those it slides within. `check` is polled between
-/// steps.
+/// the start, those it moves into at the end, those it slides within. A stop request is honoured
+/// between steps.
 Candidates general_candidates(const Entity& entity, const std::shared_ptr<const StageMotion>& motion,
                               const Eigen::AlignedBox3d& reach, double size, double fit_tol, double& fit_err);
 

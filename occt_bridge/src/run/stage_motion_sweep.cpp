@@ -5,8 +5,9 @@
 // sweep of the entity at its start pose (the stages of run_sweep), and the set is their union,
 // judged once. Under a general motion a ball sweeps the tube about its centre's path
 // (varieties/ball_path.cpp), judged by a branch and bound over t (sweep/stage_membership.hpp); a
-// point sweeps its fitted path and a curve a fitted surface; other entities under general motions
-// are not built yet and fail with that reason.
+// point sweeps its fitted path and a curve a fitted surface; other solids under general motions
+// are built from the arrangement of their candidate patches with --general-motions (decision 0027)
+// and fail as not supported yet without it.
 #include <BRepAlgoAPI_Fuse.hxx>
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
@@ -29,7 +30,6 @@
 #include "arrangement/stage_sweep.hpp"
 #include "base/internal.hpp"
 #include "base/stop.hpp"
-#include "faces/patch_face.hpp"
 #include "run/run_steps.hpp"
 #include "sweep/error.hpp"
 #include "sweep/candidate_patches.hpp"
