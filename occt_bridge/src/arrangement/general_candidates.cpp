@@ -63,16 +63,6 @@ TopoDS_Face plane_face(const PatchPlane& p, const Eigen::AlignedBox3d& box) {
   return BRepBuilderAPI_MakeFace(plane, -r, r, -r, r).Face();
 }
 
-Variety variety_of(const CandidatePatch& c) {
-  Variety v;
-  v.stage = 1;
-  v.type = c.type;
-  v.what = c.patch->what();
-  for (const auto& [name, value] : c.fixed) v.fixed[name] = value;
-  for (const auto& [name, range] : c.free) v.free[name] = {range.first, range.second};
-  return v;
-}
-
 /// The distance from q to the sheet's side at t (its second parameter): a scan of its first
 /// parameter, then golden-section search about the nearest sample.
 double distance_to_side(const Patch& sheet, double t, const Eigen::Vector3d& q) {
@@ -160,6 +150,16 @@ std::vector<TopoDS_Face> bounding_pieces(const std::vector<TopoDS_Face>& copy, c
 
 }  // namespace
 
+Variety candidate_variety(const CandidatePatch& c) {
+  Variety v;
+  v.stage = 1;
+  v.type = c.type;
+  v.what = c.patch->what();
+  for (const auto& [name, value] : c.fixed) v.fixed[name] = value;
+  for (const auto& [name, range] : c.free) v.free[name] = {range.first, range.second};
+  return v;
+}
+
 Candidates general_candidates(const Entity& entity, const std::shared_ptr<const StageMotion>& motion,
                               const Eigen::AlignedBox3d& reach, double size, double fit_tol, double& fit_err) {
   Candidates cand;
@@ -228,7 +228,7 @@ Candidates general_candidates(const Entity& entity, const std::shared_ptr<const 
   }
   for (std::size_t k = 0; k < patches.size(); ++k) {
     if (skip[k]) continue;
-    const int id = cand.add_variety(variety_of(patches[k]));
+    const int id = cand.add_variety(candidate_variety(patches[k]));
     cand.add(id, faces[k], patches[k].type != "limit");
   }
   cand.varieties = int(cand.vars.size());

@@ -13,6 +13,9 @@
 
 namespace sweep::occt {
 
+/// The variety a candidate patch lies on (stage 1), for the report.
+Variety candidate_variety(const CandidatePatch& c);
+
 /// The candidate faces of `entity` under `motion`, with their varieties (stage 1): `reach` a box
 /// that holds the swept set, `size` the model size, faces fitted within `fit_tol` (`fit_err` raised
 /// to their largest measured error). An end copy of a face is split along the edges of the

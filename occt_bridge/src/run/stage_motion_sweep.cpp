@@ -379,12 +379,7 @@ bool list_general_candidates(const Spec& spec, const Sizing& sizing, const RunOp
   if (!opt.varieties || !sizing.entity.core || spec.entity.dimension() != 3) return false;
   const auto t0 = Clock::now();
   for (const CandidatePatch& c : candidate_patches(*sizing.entity.core, spec.motion.stage, [] { check_stop(); })) {
-    Variety v;
-    v.stage = 1;
-    v.type = c.type;
-    v.what = c.patch->what();
-    for (const auto& [name, value] : c.fixed) v.fixed[name] = value;
-    for (const auto& [name, range] : c.free) v.free[name] = {range.first, range.second};
+    Variety v = candidate_variety(c);
     v.area = patch_area(*c.patch);
     check_stop();
     opt.varieties->push_back(std::move(v));
