@@ -189,9 +189,9 @@ TEST_CASE("Patch faces: ruled patches become ruled faces between their fitted si
     CHECK(worst <= 2 * tol);
     // its area against the patch's points, triangulated finely (closer towards the end of v,
     // where the closing sheet's width changes as a square root)
-    const int n = 800;
+    constexpr int n = 800;
     double area = 0;
-    auto at = [p, n](int i, int j) {
+    auto at = [p](int i, int j) {
       const double f = 1 - double(n - j) / n;
       return p->eval(double(i) / n, p->lo(1) + (p->hi(1) - p->lo(1)) * (1 - (1 - f) * (1 - f))).x;
     };
