@@ -27,23 +27,23 @@ bool same_plane(const PatchPlane& a, const PatchPlane& b, double tol) {
   return std::abs(std::abs(c) - 1) < 1e-12 && std::abs(a.offset - (c > 0 ? 1 : -1) * b.offset) <= tol;
 }
 
-/// The planes in which candidate sweeps (not the entity's copies) lie: a motion that keeps a plane
-/// sweeps curves lying in it over regions of it, folded where a curve moves along itself. Each
-/// plane once.
-std::vector<PatchPlane> kept_planes(const std::vector<CandidatePatch>& patches, double tol) {
+/// The planes in which candidate sweeps (not the entity's copies) lie, given each patch's plane: a
+/// motion that keeps a plane sweeps curves lying in it over regions of it, folded where a curve
+/// moves along itself. Each plane once.
+std::vector<PatchPlane> kept_planes(const std::vector<CandidatePatch>& patches,
+                                    const std::vector<std::optional<PatchPlane>>& plane_of, double tol) {
   std::vector<PatchPlane> out;
-  for (const CandidatePatch& c : patches) {
-    if (c.type == "limit") continue;
-    const std::optional<PatchPlane> p = patch_plane(*c.patch, tol);
-    if (p && std::none_of(out.begin(), out.end(), [&](const PatchPlane& q) { return same_plane(q, *p, tol); }))
+  for (std::size_t k = 0; k < patches.size(); ++k) {
+    const std::optional<PatchPlane>& p = plane_of[k];
+    if (patches[k].type == "limit" || !p) continue;
+    if (std::none_of(out.begin(), out.end(), [&](const PatchPlane& q) { return same_plane(q, *p, tol); }))
       out.push_back(*p);
   }
   return out;
 }
 
-/// Whether a patch lies in one of the planes (the plane's face holds it).
-bool on_kept_plane(const Patch& patch, const std::vector<PatchPlane>& planes, double tol) {
-  const std::optional<PatchPlane> p = patch_plane(patch, tol);
+/// Whether a patch whose plane is `p` lies in one of the planes (the plane's face holds it).
+bool on_kept_plane(const std::optional<PatchPlane>& p, const std::vector<PatchPlane>& planes, double tol) {
   return p && std::any_of(planes.begin(), planes.end(), [&](const PatchPlane& q) { return same_plane(q, *p, tol); });
 }
 
@@ -124,22 +124,29 @@ int facing_at(const TopoDS_Face& f, const StageMotion& motion, double t) {
   return front ? 1 : back ? -1 : 0;
 }
 
+/// The faces split by the edges `tools` (the faces themselves when there are none); `why` is the
+/// error when OCCT's splitter fails.
+std::vector<TopoDS_Face> split_faces(const std::vector<TopoDS_Face>& faces, const TopTools_ListOfShape& tools,
+                                     double fuzzy, const char* why) {
+  if (tools.IsEmpty()) return faces;
+  std::vector<TopoDS_Face> pieces;
+  for (const TopoDS_Face& f : faces) {
+    const TopoDS_Shape split = split_by_edges(f, tools, fuzzy, SplitMode::NonDestructive);
+    if (split.IsNull()) throw ComputeError(why);
+    for (TopExp_Explorer ex(split, TopAbs_FACE); ex.More(); ex.Next()) pieces.push_back(TopoDS::Face(ex.Current()));
+  }
+  return pieces;
+}
+
 /// The pieces of an end copy at t that can bound the swept set: the copy split along the sheets'
 /// edges that leave it, then the pieces the motion leaves behind (at the start) or moves into (at
 /// the end), slides within, or was not found to face one way.
 std::vector<TopoDS_Face> bounding_pieces(const std::vector<TopoDS_Face>& copy, const std::vector<TopoDS_Edge>& tools,
                                          const StageMotion& motion, double t, bool start, double fuzzy) {
-  std::vector<TopoDS_Face> pieces = copy;
-  if (!tools.empty()) {
-    TopTools_ListOfShape list;
-    for (const auto& e : tools) list.Append(e);
-    pieces.clear();
-    for (const TopoDS_Face& f : copy) {
-      const TopoDS_Shape split = split_by_edges(f, list, fuzzy, SplitMode::NonDestructive);
-      if (split.IsNull()) throw ComputeError("an end copy could not be split where the envelope sheets leave it");
-      for (TopExp_Explorer ex(split, TopAbs_FACE); ex.More(); ex.Next()) pieces.push_back(TopoDS::Face(ex.Current()));
-    }
-  }
+  TopTools_ListOfShape list;
+  for (const auto& e : tools) list.Append(e);
+  const std::vector<TopoDS_Face> pieces =
+      split_faces(copy, list, fuzzy, "an end copy could not be split where the envelope sheets leave it");
   std::vector<TopoDS_Face> out;
   for (const TopoDS_Face& p : pieces) {
     const int facing = facing_at(p, motion, t);
@@ -165,7 +172,9 @@ Candidates general_candidates(const Entity& entity, const std::shared_ptr<const 
   Candidates cand;
   const std::vector<CandidatePatch> patches = candidate_patches(entity, motion, [] { check_stop(); });
   const double flat = Settings::resolution * size;
-  const std::vector<PatchPlane> planes = kept_planes(patches, flat);
+  std::vector<std::optional<PatchPlane>> plane_of;
+  for (const CandidatePatch& c : patches) plane_of.push_back(patch_plane(*c.patch, flat));
+  const std::vector<PatchPlane> planes = kept_planes(patches, plane_of, flat);
   for (const PatchPlane& plane : planes) {
     Variety v;
     v.stage = 1;
@@ -177,7 +186,7 @@ Candidates general_candidates(const Entity& entity, const std::shared_ptr<const 
   std::vector<std::vector<TopoDS_Face>> faces(patches.size());
   std::vector<char> skip(patches.size(), 0);
   for (std::size_t k = 0; k < patches.size(); ++k) {
-    skip[k] = on_kept_plane(*patches[k].patch, planes, flat);
+    skip[k] = on_kept_plane(plane_of[k], planes, flat);
     if (skip[k] || patches[k].type == "limit") continue;
     for (const PatchFace& pf : patch_faces(*patches[k].patch, fit_tol, Settings::patch_face_splits)) {
       faces[k].push_back(pf.face);
@@ -197,14 +206,8 @@ Candidates general_candidates(const Entity& entity, const std::shared_ptr<const 
         for (TopExp_Explorer ex(f, TopAbs_EDGE); ex.More(); ex.Next())
           if (!BRep_Tool::Degenerated(TopoDS::Edge(ex.Current()))) sheet_edges.Append(ex.Current());
   for (std::size_t k = 0; k < patches.size(); ++k) {
-    if (skip[k] || patches[k].type != "boundary" || sheet_edges.IsEmpty()) continue;
-    std::vector<TopoDS_Face> pieces;
-    for (const TopoDS_Face& f : faces[k]) {
-      const TopoDS_Shape split = split_by_edges(f, sheet_edges, fuzzy, SplitMode::NonDestructive);
-      if (split.IsNull()) throw ComputeError("the sweep of an edge could not be split where envelope sheets meet it");
-      for (TopExp_Explorer ex(split, TopAbs_FACE); ex.More(); ex.Next()) pieces.push_back(TopoDS::Face(ex.Current()));
-    }
-    faces[k] = std::move(pieces);
+    if (skip[k] || patches[k].type != "boundary") continue;
+    faces[k] = split_faces(faces[k], sheet_edges, fuzzy, "the sweep of an edge could not be split where envelope sheets meet it");
     check_stop();
   }
   for (std::size_t k = 0; k < patches.size(); ++k) {

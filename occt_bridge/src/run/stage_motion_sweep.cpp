@@ -344,8 +344,8 @@ void general_solid_sweep(const Spec& spec, const StageMotion& m, const Sizing& s
   stage.stage = 1;
   const auto t_var = Clock::now();
   if (opt.progress) opt.progress("candidate varieties");
-  Candidates cand =
-      general_candidates(*sizing.entity.core, spec.motion.stage, stage_swept_box(box_of(raw), m), size, fit_tol, fit_err);
+  const Eigen::AlignedBox3d reach = stage_swept_box(box_of(raw), m);
+  Candidates cand = general_candidates(*sizing.entity.core, spec.motion.stage, reach, size, fit_tol, fit_err);
   stage.varieties = cand.varieties;
   stage.add_seconds("varieties", since(t_var));
   drop_duplicate_candidates(cand, size);
@@ -368,7 +368,7 @@ void general_solid_sweep(const Spec& spec, const StageMotion& m, const Sizing& s
     cand.compute_areas();
     for (const auto& v : cand.vars) opt.varieties->push_back(v);
   }
-  FinalChecks check(rep, member, stage_swept_box(box_of(raw), m), tol, size, fit_err, opt.settings, false, "");
+  FinalChecks check(rep, member, reach, tol, size, fit_err, opt.settings, false, "");
   finish_solid(solid, check, member.test, size, tol, opt, record, res);
 }
 
