@@ -1,5 +1,6 @@
 // One stage built from its sweep boundary (see boundary_sweep.hpp).
 #include "arrangement/boundary_sweep.hpp"
+#include "arrangement/facing.hpp"
 #include "arrangement/hole_fill.hpp"
 #include "arrangement/split_tools.hpp"
 
@@ -63,39 +64,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
-/// A point of a face with its outward normal (the face's orientation applied).
-struct SurfacePoint {
-  gp_Pnt p;
-  gp_Vec n;
-};
-/// Appends the point of face f at uv with its outward normal, when the normal is defined.
-bool add_surface_point(const BRepAdaptor_Surface& S, const TopoDS_Face& f, const gp_Pnt2d& uv,
-                       std::vector<SurfacePoint>& out) {
-  BRepLProp_SLProps props(S, uv.X(), uv.Y(), 1, 1e-9);
-  if (!props.IsNormalDefined()) return false;
-  gp_Vec nn(props.Normal());
-  if (f.Orientation() == TopAbs_REVERSED) nn.Reverse();
-  out.push_back({props.Value(), nn});
-  return true;
-}
-
-/// Points inside a face with their outward normals, on an n x n grid of its parameter box.
-std::vector<SurfacePoint> face_samples(const TopoDS_Face& f, int n) {
-  std::vector<SurfacePoint> out;
-  double u0, u1, v0, v1;
-  BRepTools::UVBounds(f, u0, u1, v0, v1);
-  BRepTopAdaptor_FClass2d fc(f, 1e-9);
-  BRepAdaptor_Surface S(f);
-  for (int a = 0; a < n; ++a)
-    for (int b = 0; b < n; ++b) {
-      // an irrational offset keeps the grid off the middle lines of symmetric faces
-      const gp_Pnt2d uv(u0 + (u1 - u0) * (a + 0.5 + 0.1180339887 * ((b % 3) - 1)) / n,
-                        v0 + (v1 - v0) * (b + 0.5 + 0.0729490168 * ((a % 3) - 1)) / n);
-      if (fc.Perform(uv) == TopAbs_IN) add_surface_point(S, f, uv, out);
-    }
-  return out;
-}
-
 /// Points inside a slender face that the grid of face_samples misses: from points along its edges,
 /// steps of shrinking length across them in the parameter plane, kept where the step lands inside;
 /// up to `count` of them, with outward normals.
@@ -126,26 +94,6 @@ std::vector<SurfacePoint> edge_samples(const TopoDS_Face& f, int count) {
     }
   }
   return out;
-}
-
-/// How the motion meets a face: it leaves the face behind where n . v < 0 (Back), moves into what
-/// lies in front of it where n . v > 0 (Front), slides within it where n . v = 0 everywhere.
-enum class Facing { Back, Front, Slides, Mixed, Unknown };
-
-Facing facing_of(const TopoDS_Face& f, const ScrewJoint& j, double size) {
-  int pos = 0, neg = 0, zero = 0;
-  for (const auto& s : face_samples(f, 7)) {
-    const Eigen::Vector3d v = j.velocity(to_eigen(s.p));
-    const double speed = v.norm();
-    if (speed < 1e-12 * size) continue;  // on the axis
-    const double c = to_eigen(s.n).dot(v) / speed;
-    if (c > 1e-9) ++pos;
-    else if (c < -1e-9) ++neg;
-    else ++zero;
-  }
-  if (pos == 0 && neg == 0) return zero > 0 ? Facing::Slides : Facing::Unknown;
-  if (pos > 0 && neg > 0) return Facing::Mixed;
-  return pos > 0 ? Facing::Front : Facing::Back;
 }
 
 /// The body with its faces split at their grazing curves (shared edges kept); `grazing` receives
@@ -455,7 +403,7 @@ std::vector<Candidate> candidates_of(const TopoDS_Shape& body, BoundaryContext& 
   TopExp::MapShapes(split, TopAbs_FACE, pieces);
   std::vector<Facing> face_facing(pieces.Extent() + 1, Facing::Unknown);
   for (int k = 1; k <= pieces.Extent(); ++k) {
-    face_facing[k] = facing_of(TopoDS::Face(pieces(k)), j, size);
+    face_facing[k] = facing_of(TopoDS::Face(pieces(k)), VelocityField(j), size);
     if (face_facing[k] == Facing::Mixed) {
       throw BoundaryFailure{"a face of the body could not be split where the motion becomes tangent to it"};
     }

@@ -95,7 +95,7 @@ bool internal_by_sign(const StageInput& in, LimitIds limits, int id, const TopoD
   const int sampled = visit_face_samples(f, [&](const Eigen::Vector3d& p, const Eigen::Vector3d& nn) {
     // how far the range moves the point along the normal, at least ten times the offset of the
     // membership tests (a face the motion barely leaves is tested)
-    const double c = nn.dot(in.j.velocity(p)) * in.T;
+    const double c = nn.dot(in.j().velocity(p)) * in.T();
     all_pos = all_pos && c > 10 * delta;
     all_neg = all_neg && c < -10 * delta;
     return true;

@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "arrangement/facing.hpp"
 #include "base/internal.hpp"
 #include "base/stop.hpp"
 #include "faces/patch_face.hpp"
@@ -97,33 +98,6 @@ std::vector<TopoDS_Edge> edges_at(const Patch& sheet, const std::vector<TopoDS_F
   return out;
 }
 
-/// How the motion at t meets a face: +1 it moves into what lies in front of it everywhere sampled,
-/// -1 it leaves it behind, 0 it slides within it, 2 both (a face no grazing arc split).
-int facing_at(const TopoDS_Face& f, const StageMotion& motion, double t) {
-  double u0, u1, v0, v1;
-  BRepTools::UVBounds(f, u0, u1, v0, v1);
-  BRepTopAdaptor_FClass2d inside(f, 1e-9);
-  const BRepAdaptor_Surface S(f);
-  const PoseJet P = motion.pose(t);
-  int front = 0, back = 0;
-  for (int i = 1; i < 8; ++i)
-    for (int j = 1; j < 8; ++j) {
-      const gp_Pnt2d uv(u0 + (u1 - u0) * i / 8, v0 + (v1 - v0) * j / 8);
-      if (inside.Perform(uv) != TopAbs_IN) continue;
-      BRepLProp_SLProps props(S, uv.X(), uv.Y(), 1, 1e-9);
-      if (!props.IsNormalDefined()) continue;
-      Eigen::Vector3d n = to_eigen(gp_Vec(props.Normal()));
-      if (f.Orientation() == TopAbs_REVERSED) n = -n;
-      const Eigen::Vector3d x = to_eigen(props.Value());
-      const Eigen::Vector3d v = P.dR * (P.R.transpose() * (x - P.p)) + P.dp;
-      const double c = n.dot(v) / std::max(v.norm(), 1e-300);
-      if (c > 1e-9) ++front;
-      if (c < -1e-9) ++back;
-    }
-  if (front && back) return 2;
-  return front ? 1 : back ? -1 : 0;
-}
-
 /// The faces split by the edges `tools` (the faces themselves when there are none); `why` is the
 /// error when OCCT's splitter fails.
 std::vector<TopoDS_Face> split_faces(const std::vector<TopoDS_Face>& faces, const TopTools_ListOfShape& tools,
@@ -142,15 +116,16 @@ std::vector<TopoDS_Face> split_faces(const std::vector<TopoDS_Face>& faces, cons
 /// edges that leave it, then the pieces the motion leaves behind (at the start) or moves into (at
 /// the end), slides within, or was not found to face one way.
 std::vector<TopoDS_Face> bounding_pieces(const std::vector<TopoDS_Face>& copy, const std::vector<TopoDS_Edge>& tools,
-                                         const StageMotion& motion, double t, bool start, double fuzzy) {
+                                         const StageMotion& motion, double t, bool start, double size,
+                                         double fuzzy) {
   TopTools_ListOfShape list;
   for (const auto& e : tools) list.Append(e);
   const std::vector<TopoDS_Face> pieces =
       split_faces(copy, list, fuzzy, "an end copy could not be split where the envelope sheets leave it");
   std::vector<TopoDS_Face> out;
   for (const TopoDS_Face& p : pieces) {
-    const int facing = facing_at(p, motion, t);
-    if (facing == 0 || facing == 2 || facing == (start ? -1 : 1)) out.push_back(p);
+    const Facing facing = facing_of(p, VelocityField(motion.twist(t)), size);
+    if (facing != (start ? Facing::Front : Facing::Back)) out.push_back(p);
   }
   return out;
 }
@@ -226,7 +201,7 @@ Candidates general_candidates(const Entity& entity, const std::shared_ptr<const 
       copy.push_back(pf.face);
       fit_err = std::max(fit_err, pf.error);
     }
-    faces[k] = bounding_pieces(copy, tools, *motion, t, t == lo, fuzzy);
+    faces[k] = bounding_pieces(copy, tools, *motion, t, t == lo, size, fuzzy);
     check_stop();
   }
   for (std::size_t k = 0; k < patches.size(); ++k) {

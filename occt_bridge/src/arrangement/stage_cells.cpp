@@ -166,11 +166,30 @@ void Candidates::compute_areas() {
   }
 }
 
+StageInput::StageInput(const TopoDS_Shape& body, int dim, std::shared_ptr<const StageMotion> motion, double esize,
+                       double size, double tol, double fit_tol, int stage, int joint_no)
+    : body(body), dim(dim), motion(std::move(motion)), esize(esize), size(size), tol(tol), fit_tol(fit_tol),
+      stage(stage), joint_no(joint_no) {
+  screw = this->motion->as_screw(radius_of(body));
+}
+
+const ScrewJoint& StageInput::j() const {
+  if (!screw) throw InternalError("a stage under a motion that is no screw has no screw joint");
+  return screw->joint;
+}
+
+std::shared_ptr<const StageMotion> screw_stage_motion(const ScrewJoint& j, double T) {
+  ScrewJoint from_body = j;
+  from_body.lo = 0;
+  from_body.hi = T;
+  return std::make_shared<ScrewStage>(from_body);
+}
+
 PointTest stage_trajectory_membership(const StageInput& in, double tol_factor) {
   auto by_trajectory = std::make_shared<std::unique_ptr<TrajectoryMembership>>();
   return [in, by_trajectory, tol_factor](const Eigen::Vector3d& x) {
     if (!*by_trajectory)
-      *by_trajectory = std::make_unique<TrajectoryMembership>(in.body, in.dim == 3, in.j, in.T, tol_factor * in.size);
+      *by_trajectory = std::make_unique<TrajectoryMembership>(in.body, in.dim == 3, in.j(), in.T(), tol_factor * in.size);
     return (**by_trajectory)(x);
   };
 }
@@ -189,9 +208,14 @@ PointTestMaker trajectory_membership(const TopoDS_Shape& body, const ScrewJoint&
 }
 
 PointTest stage_membership(const StageInput& in) {
-  if (in.sd) return [in](const Eigen::Vector3d& x) { return in_swept_set(*in.sd, in.sd_motion, x, Settings::resolution * in.size); };
-  if (in.pe)
-    return [in](const Eigen::Vector3d& x) { return in_swept_image(*in.pe, in.sd_motion, x, Settings::resolution * in.size, in.size); };
+  if (in.member) return in.member();
+  if (in.sd && in.sd_motion)
+    return [in](const Eigen::Vector3d& x) { return in_swept_set(*in.sd, *in.sd_motion, x, Settings::resolution * in.size); };
+  if (in.pe && in.sd_motion)
+    return [in](const Eigen::Vector3d& x) {
+      return in_swept_image(*in.pe, *in.sd_motion, x, Settings::resolution * in.size, in.size);
+    };
+  if (!in.screw) throw InternalError("a stage under a motion that is no screw needs its membership test");
   return stage_trajectory_membership(in, Settings::resolution);
 }
 
@@ -369,7 +393,7 @@ TopoDS_Shape solid_sweep(const StageInput& in, double& fit_err, StageRecord& rec
   // stage's solid and builds it again without pruning when a check fails.
   if (pruned) *pruned = PruneCount{int(cand.faces.size()), 0};
   DroppedFaces dropped;
-  if (prune) {
+  if (prune && in.screw) {  // (the quick tests that pruning needs are a screw's)
     const auto t_prune = Clock::now();
     dropped = prune_internal_candidates(in, limits, fit_err, cand);
     sec["pruning"] += since(t_prune);

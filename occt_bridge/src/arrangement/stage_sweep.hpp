@@ -8,12 +8,16 @@
 #include <TopoDS_Face.hxx>
 #include <TopoDS_Shape.hxx>
 #include <chrono>
+#include <memory>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <vector>
 
 #include "base/internal.hpp"
 #include "sweep/membership.hpp"
+#include "sweep/entity.hpp"
 #include "sweep/orbit.hpp"
+#include "sweep/stage_motion.hpp"
 
 namespace sweep::occt {
 
@@ -87,26 +91,43 @@ struct PruneCount {
   int dropped = 0;     ///< left out as internal (some may be restored later)
 };
 
-/// What a stage sweeps and how: `body` (a solid, or faces when dim == 2) under joint j for q in
-/// [0, T]. `sd`, when given, is the entity's signed distance, or `pe` its parametric map, and
-/// `sd_motion` the motion that carries the entity to this stage's swept set (for the membership
-/// test independent of the B-rep).
+/// What a stage sweeps and how: `body` (a solid, or faces when dim == 2) moved by `motion` over
+/// [motion->lo(), motion->hi()] (the body as given is what the motion moves). `sd`, when given, is
+/// the entity's signed distance, or `pe` its parametric map, and `sd_motion` the chain that
+/// carries the entity to this stage's swept set (for the membership test independent of the
+/// B-rep). `member`, when given, is that test itself (a general motion's search over t); `core` is
+/// the entity as the core sees it, at the body's pose (a general motion's candidates need it).
 struct StageInput {
+  /// `screw` is found from the motion (StageMotion::as_screw over the body's reach).
+  StageInput(const TopoDS_Shape& body, int dim, std::shared_ptr<const StageMotion> motion, double esize, double size,
+             double tol, double fit_tol, int stage, int joint_no);
   const TopoDS_Shape& body;
   int dim;
-  const ScrewJoint& j;
-  double T;
-  const SignedDistance* sd;
-  const ParametricEntity* pe;
-  const Motion& sd_motion;
+  std::shared_ptr<const StageMotion> motion;
   double esize;  ///< the body's extent
   double size;   ///< the model's size
   double tol;
   double fit_tol;
   int stage;
   int joint_no;
-  bool full_turn() const { return j.type == JointType::Revolute && T >= 2 * M_PI - 1e-12; }
+  const SignedDistance* sd = nullptr;
+  const ParametricEntity* pe = nullptr;
+  const Motion* sd_motion = nullptr;
+  PointTestMaker member;
+  const Entity* core = nullptr;
+  /// The motion as one screw joint from the body's pose, q in [0, T()]: the screw engine's closed
+  /// forms (fixed grazing curves, orbit sections, surfaces of revolution and extrusion) apply.
+  /// None under a general motion.
+  std::optional<ScrewSegment> screw;
+  /// The screw's joint; throws InternalError under a general motion.
+  const ScrewJoint& j() const;
+  /// The screw's range.
+  double T() const { return j().hi; }
+  bool full_turn() const { return screw && j().type == JointType::Revolute && T() >= 2 * M_PI - 1e-12; }
 };
+
+/// A screw joint's stage motion over q in [0, T] from the body's pose.
+std::shared_ptr<const StageMotion> screw_stage_motion(const ScrewJoint& j, double T);
 
 /// The varieties of the body at both ends of the range (hi -1 over a full turn).
 struct LimitIds {

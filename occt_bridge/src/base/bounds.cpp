@@ -92,4 +92,20 @@ Bnd_Box shape_box(const TopoDS_Shape& s) {
   return box;
 }
 
+Eigen::AlignedBox3d box_of(const TopoDS_Shape& s) {
+  const Bnd_Box b = shape_box(s);
+  if (b.IsVoid()) return Eigen::AlignedBox3d();
+  double x0, y0, z0, x1, y1, z1;
+  b.Get(x0, y0, z0, x1, y1, z1);
+  return Eigen::AlignedBox3d(Eigen::Vector3d(x0, y0, z0), Eigen::Vector3d(x1, y1, z1));
+}
+
+double radius_of(const TopoDS_Shape& s) {
+  const Eigen::AlignedBox3d box = box_of(s);
+  if (box.isEmpty()) return 0;
+  double r = 0;
+  for (int k = 0; k < 8; ++k) r = std::max(r, box.corner(Eigen::AlignedBox3d::CornerType(k)).norm());
+  return r;
+}
+
 }  // namespace sweep::occt

@@ -149,6 +149,10 @@ TopoDS_Shape ball_screw_sweep_overlap(const Eigen::Vector3d& c, double r, const 
 
 /// The axis-aligned box of a shape's vertices, edges and (trimmed) faces, without enlargement.
 Bnd_Box shape_box(const TopoDS_Shape& s);
+/// The same box as Eigen's (empty for an empty shape).
+Eigen::AlignedBox3d box_of(const TopoDS_Shape& s);
+/// The largest distance from the origin of a corner of the shape's box (0 for an empty shape).
+double radius_of(const TopoDS_Shape& s);
 
 /// A direction known to point out of the solid at one point of one of the faces to be sewn:
 /// face `face` of the list, at (u, v) of its surface, where the outward direction is `out`.

@@ -26,12 +26,12 @@ namespace {
 /// ball under a screw, else from its sweep boundary, whose pieces are classified by the entity's
 /// orbit intervals (a primitive) or by trajectories against the body's faces. Null when neither
 /// builds it (then the cells do). `orbit_entity`: the entity's orbit solid (null when it has none);
-/// `G`: the entity's placement before the stage.
-TopoDS_Shape entity_stage(const StageInput& in, const OrbitSolidPtr& orbit_entity, const Eigen::Isometry3d& G,
+/// `start`: the entity's placement at the start of the stage.
+TopoDS_Shape entity_stage(const StageInput& in, const OrbitSolidPtr& orbit_entity, const Eigen::Isometry3d& start,
                           const RunOptions& opt, double& fit_err, StageRecord& record, Candidates& stage_cands,
                           const std::function<void(const std::string&)>& step) {
-  const ScrewJoint& j = in.j;
-  const double T = in.T;
+  const ScrewJoint& j = in.j();
+  const double T = in.T();
   const TopoDS_Shape direct = opt.direct_builds ? ball_screw_stage(in, fit_err, stage_cands) : TopoDS_Shape();
   if (!direct.IsNull()) {
     record.varieties += int(stage_cands.vars.size());
@@ -39,7 +39,7 @@ TopoDS_Shape entity_stage(const StageInput& in, const OrbitSolidPtr& orbit_entit
     return direct;
   }
   const PointTestMaker stage_member = orbit_entity
-                                          ? orbit_membership(orbit_placed(orbit_entity, j.transform(j.lo) * G), j, T)
+                                          ? orbit_membership(orbit_placed(orbit_entity, start), j, T)
                                           : trajectory_membership(in.body, j, T, Settings::resolution * in.size);
   // A boundary that left a piece out (a sliver whose crossing with an end copy no section found)
   // does not close. Crossings traced where sweeps touch the copies are then left to OCCT's general
@@ -104,10 +104,11 @@ TopoDS_Shape cells_stage(const StageInput& in, const ChainEntity& entity, std::s
                          Candidates& stage_cands, std::function<TopoDS_Shape(Candidates*, StageRecord&)>* redo,
                          const std::function<void(const std::string&)>& step) {
   // the stage's input, copied: the rebuild may run after this function has returned
-  auto sweep_stage = [body = in.body, dim = in.dim, j = in.j, T = in.T, sd = in.sd, spe, sd_motion = in.sd_motion,
-                      esize = in.esize, size = in.size, tol = in.tol, fit_tol = in.fit_tol, stage = in.stage,
-                      joint_no = in.joint_no, &fit_err, direct = opt.direct_builds](
-                         bool prune, PruneCount* pruned, Candidates* out, StageRecord& rec) {
+  const std::optional<Motion> sd_motion = in.sd_motion ? std::optional<Motion>(*in.sd_motion) : std::nullopt;
+  auto sweep_stage = [body = in.body, dim = in.dim, motion = in.motion, sd = in.sd, spe, sd_motion, esize = in.esize,
+                      size = in.size, tol = in.tol, fit_tol = in.fit_tol, stage = in.stage, joint_no = in.joint_no,
+                      &fit_err, direct = opt.direct_builds](bool prune, PruneCount* pruned, Candidates* out,
+                                                            StageRecord& rec) {
     StageRecord fresh;  // a rebuild starts the stage's counts again and keeps its seconds
     fresh.stage = rec.stage;
     fresh.from_cells = rec.from_cells;
@@ -115,7 +116,10 @@ TopoDS_Shape cells_stage(const StageInput& in, const ChainEntity& entity, std::s
     fresh.seconds = rec.seconds;
     rec = fresh;
     *out = Candidates();
-    const StageInput again{body, dim, j, T, sd, spe.get(), sd_motion, esize, size, tol, fit_tol, stage, joint_no};
+    StageInput again(body, dim, motion, esize, size, tol, fit_tol, stage, joint_no);
+    again.sd = sd;
+    again.pe = spe.get();
+    again.sd_motion = sd_motion ? &*sd_motion : nullptr;
     return solid_sweep(again, fit_err, rec, out, prune, pruned, direct);
   };
   PruneCount pruned;
@@ -231,9 +235,10 @@ ChainSweep sweep_chain(const ChainEntity& entity, const Motion& motion, bool jud
     StageRecord& stage_record = dim >= 2 ? record.stages.back() : point_or_curve_stage;
     if (!built && dim == 3 && i == n - 1 && !std::getenv("SWEEP_CELLS_ENGINE")) {
       const auto t_stage = Clock::now();
-      const StageInput in{body, dim, j, T, nullptr, nullptr, motion, extent(body), entity.size, entity.tol,
-                          entity.fit_tol, n - i, i + 1};
-      const TopoDS_Shape solid = entity_stage(in, entity.run.orbit, G, opt, fit_err, stage_record, stage_cands, step);
+      const StageInput in(body, dim, screw_stage_motion(j, T), extent(body), entity.size, entity.tol, entity.fit_tol,
+                          n - i, i + 1);
+      const TopoDS_Shape solid =
+          entity_stage(in, entity.run.orbit, j.transform(j.lo) * G, opt, fit_err, stage_record, stage_cands, step);
       if (!solid.IsNull()) {
         shape = solid;
         built = true;
@@ -248,8 +253,10 @@ ChainSweep sweep_chain(const ChainEntity& entity, const Motion& motion, bool jud
       const bool use_sd = entity.run.sd && i == n - 1 && dim == 3;
       // A surface entity's first stage: points are classified against its parametric map.
       const bool use_pe = stage_pe && entity_intact && dim == 2;
-      const StageInput in{body, dim, j, T, use_sd ? entity.run.sd.get() : nullptr, nullptr, sd_motion, extent(body),
-                          entity.size, entity.tol, entity.fit_tol, n - i, i + 1};
+      StageInput in(body, dim, screw_stage_motion(j, T), extent(body), entity.size, entity.tol, entity.fit_tol, n - i,
+                    i + 1);
+      in.sd = use_sd ? entity.run.sd.get() : nullptr;
+      in.sd_motion = &sd_motion;
       stage_record.from_cells = dim == 3;
       shape = cells_stage(in, entity, use_pe ? stage_pe : nullptr, judged && i == 0, opt, fit_err, stage_record,
                           stage_cands, &out.redo_last, step);

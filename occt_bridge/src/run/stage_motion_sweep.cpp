@@ -42,27 +42,12 @@
 namespace sweep::occt {
 namespace {
 
-Eigen::AlignedBox3d box_of(const TopoDS_Shape& s) {
-  const Bnd_Box b = shape_box(s);
-  double x0, y0, z0, x1, y1, z1;
-  b.Get(x0, y0, z0, x1, y1, z1);
-  return Eigen::AlignedBox3d(Eigen::Vector3d(x0, y0, z0), Eigen::Vector3d(x1, y1, z1));
-}
-
 /// The run's entity, its shape for its extent (sizing_shape) and its fit error, built once per run.
 struct Sizing {
   RunEntity entity;
   TopoDS_Shape shape;
   double fit_err = 0;
 };
-
-/// The largest distance from the origin of a point of the shape's box.
-double radius_of(const TopoDS_Shape& s) {
-  const Eigen::AlignedBox3d box = box_of(s);
-  double r = 0;
-  for (int k = 0; k < 8; ++k) r = std::max(r, box.corner(Eigen::AlignedBox3d::CornerType(k)).norm());
-  return r;
-}
 
 /// The model size: the entity's extent and the box of its corners at sampled poses.
 double stage_model_size(const TopoDS_Shape& raw, const StageMotion& m) {
@@ -329,9 +314,10 @@ void low_dimension_stage_sweep(const Spec& spec, const StageMotion& m, const Siz
   res.shape = std::make_shared<Shape>(finish_curve_or_surface(comp, dim + 1, size, fit_err, opt.verify, rep));
 }
 
-/// A solid under a general one-parameter motion (the engine of seed 001): the core's candidate
-/// patches made faces, their arrangement, its cells kept by the search over t (which never looks
-/// at the solid), judged by the verdict against the same search.
+/// A solid under a general one-parameter motion (the engine of seed 001), as one stage of the
+/// joints' engine (solid_sweep): the core's candidate patches made faces, their arrangement, its
+/// cells kept by the search over t (which never looks at the solid), judged by the verdict
+/// against the same search.
 void general_solid_sweep(const Spec& spec, const StageMotion& m, const Sizing& sizing, const RunOptions& opt,
                          RunRecord& record, RunResult& res) {
   Report& rep = res.report;
@@ -340,18 +326,11 @@ void general_solid_sweep(const Spec& spec, const StageMotion& m, const Sizing& s
   const double size = stage_model_size(raw, m);
   const auto [tol, fit_tol] = run_tolerance(spec.tolerance, size, opt.settings);
   rep.tol_requested = tol;
-  StageRecord stage;
-  stage.stage = 1;
-  const auto t_var = Clock::now();
-  if (opt.progress) opt.progress("candidate varieties");
-  const Eigen::AlignedBox3d reach = stage_swept_box(box_of(raw), m);
-  Candidates cand = general_candidates(*sizing.entity.core, spec.motion.stage, reach, size, fit_tol, fit_err);
-  stage.varieties = cand.varieties;
-  stage.add_seconds("varieties", since(t_var));
-  drop_duplicate_candidates(cand, size);
   const IndependentMembership member = search_over_t(sizing.entity.sd, m, size, opt.settings);
   const MemberTestMaker search = member.test;
-  const PointTestMaker decided = [search]() -> PointTest {
+  StageInput in(raw, 3, spec.motion.stage, box_of(raw).sizes().maxCoeff(), size, tol, fit_tol, 1, 1);
+  in.core = sizing.entity.core.get();
+  in.member = [search]() -> PointTest {
     const MemberTest t = search();
     return [t](const Eigen::Vector3d& x) {
       const int r = t(x);
@@ -359,15 +338,18 @@ void general_solid_sweep(const Spec& spec, const StageMotion& m, const Sizing& s
       return r == 1;
     };
   };
-  if (opt.progress) opt.progress("the arrangement of " + std::to_string(cand.faces.size()) + " candidate faces");
-  DroppedFaces dropped;
+  if (opt.progress) opt.progress("candidate varieties and the arrangement of their faces");
+  record.stages.emplace_back();  // first, so that a failure keeps what the stage did
+  StageRecord& stage = record.stages.back();
+  stage.stage = 1;
   stage.from_cells = true;
-  const TopoDS_Shape solid = cells_solid(decided, size, fit_err, cand, dropped, stage);
-  record.stages.push_back(stage);
+  Candidates cand;
+  const TopoDS_Shape solid = solid_sweep(in, fit_err, stage, &cand, false, nullptr, false);
   if (opt.varieties) {
     cand.compute_areas();
     for (const auto& v : cand.vars) opt.varieties->push_back(v);
   }
+  const Eigen::AlignedBox3d reach = stage_swept_box(box_of(raw), m);
   FinalChecks check(rep, member, reach, tol, size, fit_err, opt.settings, false, "");
   finish_solid(solid, check, member.test, size, tol, opt, record, res);
 }

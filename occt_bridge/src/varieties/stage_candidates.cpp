@@ -31,8 +31,11 @@
 #include <memory>
 #include <sstream>
 
+#include "arrangement/general_candidates.hpp"
 #include "arrangement/stage_sweep.hpp"
 #include "base/stop.hpp"
+#include "sweep/error.hpp"
+#include "sweep/stage_membership.hpp"
 
 namespace sweep::occt {
 
@@ -164,14 +167,14 @@ int add_limit_variety(const StageInput& in, bool end, Candidates& cand) {
   return cand.add_variety({in.stage, in.joint_no, "limit",
                            std::string("the entity at the ") + (end ? "end" : "start") + " of joint " +
                                std::to_string(in.joint_no) + "'s range",
-                           {{qn, end ? in.T : 0.0}}, nlohmann::json::object()});
+                           {{qn, end ? in.T() : 0.0}}, nlohmann::json::object()});
 }
 
 /// The body's parameter-free variety of `type` described by `what`, swept over the joint's range
 /// and the curve parameter s in [f, l].
 int add_swept_variety(const StageInput& in, const std::string& type, const std::string& what, double f, double l,
                       Candidates& cand) {
-  nlohmann::json free = {{"q" + std::to_string(in.joint_no), {0.0, in.T}}};
+  nlohmann::json free = {{"q" + std::to_string(in.joint_no), {0.0, in.T()}}};
   free["s"] = {f, l};
   return cand.add_variety({in.stage, in.joint_no, type, what, nlohmann::json::object(), std::move(free)});
 }
@@ -203,7 +206,7 @@ bool smooth_edge(const TopoDS_Edge& e, const TopTools_IndexedDataMapOfShapeListO
 /// The sweeps of the body's edges (not seams, not smooth, not collapsed) as candidates; with
 /// `pending`, curves that do not keep a plane are collected there instead (see revolve_pieces).
 void add_edge_sweeps(const StageInput& in, double& fit_err, Candidates& cand, std::vector<RevCurve>* pending) {
-  const ScrewJoint& j = in.j;
+  const ScrewJoint& j = in.j();
   TopTools_IndexedMapOfShape edges, faces;
   TopExp::MapShapes(in.body, TopAbs_EDGE, edges);
   TopExp::MapShapes(in.body, TopAbs_FACE, faces);
@@ -240,8 +243,8 @@ void add_edge_sweeps(const StageInput& in, double& fit_err, Candidates& cand, st
       pending->push_back({c, f, l, vid});
       continue;
     }
-    auto sw = planar ? planar_curve_sweep(c, f, l, j, in.T, plane, in.size)
-                     : sweep_curve(c, f, l, j, in.T, in.tol, &fit_err);
+    auto sw = planar ? planar_curve_sweep(c, f, l, j, in.T(), plane, in.size)
+                     : sweep_curve(c, f, l, j, in.T(), in.tol, &fit_err);
     if (!sw.empty()) ++cand.varieties;
     cand.add(vid, sw);
   }
@@ -279,7 +282,7 @@ std::vector<TopoDS_Face> add_grazing_sweeps(const StageInput& in, double& fit_er
   for (int k = 1; k <= faces.Extent(); ++k) {
     const TopoDS_Face& face = TopoDS::Face(faces(k));
     TopTools_ListOfShape tools;
-    for (const auto& g : grazing_curves(face, VelocityField(in.j), in.fit_tol, in.esize)) {
+    for (const auto& g : grazing_curves(face, VelocityField(in.j()), in.fit_tol, in.esize)) {
       fit_err = std::max(fit_err, g.error);
       const GrazingEdge ge = grazing_edge(g, face, in.fit_tol);
       tools.Append(ge.edge);
@@ -291,7 +294,7 @@ std::vector<TopoDS_Face> add_grazing_sweeps(const StageInput& in, double& fit_er
         pending->push_back({ge.curve, ge.first, ge.last, vid});
         continue;
       }
-      auto sw = sweep_curve(ge.curve, ge.first, ge.last, in.j, in.T, in.tol, &fit_err);
+      auto sw = sweep_curve(ge.curve, ge.first, ge.last, in.j(), in.T(), in.tol, &fit_err);
       if (!sw.empty()) ++cand.varieties;
       cand.add(vid, sw);
     }
@@ -303,17 +306,23 @@ std::vector<TopoDS_Face> add_grazing_sweeps(const StageInput& in, double& fit_er
 }  // namespace
 
 LimitIds stage_candidates(const StageInput& in, double& fit_err, Candidates& cand) {
+  if (!in.screw) {
+    if (!in.core || in.dim != 3) throw ComputeError("only solids that the core describes are swept by a motion that is no screw");
+    cand = general_candidates(*in.core, in.motion, stage_swept_box(box_of(in.body), *in.motion), in.size, in.fit_tol,
+                              fit_err);
+    return {};
+  }
   cand.varieties += 2;
   // For a rotation (no pitch) short of a full turn, curve sweeps are collected first: pieces of
   // different curves that revolve into the same surface of revolution would give partly
   // overlapping faces, which the arrangement cannot split.
   const bool full_turn = in.full_turn();
-  const bool rotation_only = in.j.type == JointType::Revolute && !full_turn;
+  const bool rotation_only = in.j().type == JointType::Revolute && !full_turn;
   std::vector<RevCurve> pending;
   add_edge_sweeps(in, fit_err, cand, rotation_only ? &pending : nullptr);
   const std::vector<TopoDS_Face> pieces = add_grazing_sweeps(in, fit_err, cand, rotation_only ? &pending : nullptr);
   if (!pending.empty()) {
-    for (const auto& [vid, sw] : revolve_pieces(pending, in.j, in.T, in.tol, in.size, &fit_err)) {
+    for (const auto& [vid, sw] : revolve_pieces(pending, in.j(), in.T(), in.tol, in.size, &fit_err)) {
       ++cand.varieties;
       cand.add(vid, sw);
     }
@@ -323,18 +332,19 @@ LimitIds stage_candidates(const StageInput& in, double& fit_err, Candidates& can
   ids.hi = full_turn ? -1 : add_limit_variety(in, true, cand);
   for (const auto& f : pieces) {
     cand.add(ids.lo, {f});
-    if (!full_turn) cand.add(ids.hi, {TopoDS::Face(moved(f, in.j.transform(in.T)))});
+    if (!full_turn) cand.add(ids.hi, {TopoDS::Face(moved(f, in.j().transform(in.T())))});
   }
   return ids;
 }
 
 TopoDS_Shape ball_screw_stage(const StageInput& in, double& fit_err, Candidates& cand) {
-  const ScrewJoint& j = in.j;
+  if (!in.screw) return {};
+  const ScrewJoint& j = in.j();
   if (in.dim != 3) return {};  // direct_ball_screw says which joints and bodies it builds
   double err = fit_err;
   std::vector<TopoDS_Face> fs;
   std::vector<int> roles;
-  const TopoDS_Shape direct = direct_ball_screw(in.body, j, in.T, in.fit_tol, in.size, in.tol, &err, &fs, &roles);
+  const TopoDS_Shape direct = direct_ball_screw(in.body, j, in.T(), in.fit_tol, in.size, in.tol, &err, &fs, &roles);
   if (direct.IsNull()) return {};
   fit_err = err;
   cand.varieties += 3;
@@ -343,15 +353,16 @@ TopoDS_Shape ball_screw_stage(const StageInput& in, double& fit_err, Candidates&
                                      "grazing curve (n . v = 0) on entity face 1 swept by joint " +
                                          std::to_string(in.joint_no) + " (a tube about the centre's " +
                                          (j.type == JointType::Prismatic ? "segment)" : "helix)"),
-                                     nlohmann::json::object(), nlohmann::json{{qn, {0.0, in.T}}}});
+                                     nlohmann::json::object(), nlohmann::json{{qn, {0.0, in.T()}}}});
   const int lo_id = add_limit_variety(in, false, cand), hi_id = add_limit_variety(in, true, cand);
   for (std::size_t k = 0; k < fs.size(); ++k) cand.add(roles[k] == 0 ? tube : roles[k] == 1 ? lo_id : hi_id, {fs[k]}, true);
   return direct;
 }
 
 TopoDS_Shape direct_stage(const StageInput& in, double& fit_err, Candidates& cand) {
-  const ScrewJoint& j = in.j;
-  const double T = in.T;
+  if (!in.screw) return {};
+  const ScrewJoint& j = in.j();
+  const double T = in.T();
   const std::string qn = "q" + std::to_string(in.joint_no);
   const nlohmann::json qfree = {{qn, {0.0, T}}};
   auto variety = [&](const std::string& type, const std::string& what, nlohmann::json fixed, nlohmann::json free) {

@@ -72,6 +72,8 @@ class VelocityField {
   /// A stage motion's field at t: its screw's when the motion is one screw (as_screw(radius)), else
   /// its twist at t.
   VelocityField(const StageMotion& motion, double t, double radius);
+  /// One instant's field as it is.
+  explicit VelocityField(const Twist& twist) : twist_(twist) {}
   Eigen::Vector3d at(const Eigen::Vector3d& x) const { return screw_ ? screw_->velocity(x) : twist_.at(x); }
   /// The field's own length, for tolerances relative to the model: a joint's point plus its pitch,
   /// a twist's axis distance from the origin plus its pitch (0 for a translation).
