@@ -1,6 +1,6 @@
 #include "sweep/membership.hpp"
 
-#include <Eigen/SVD>
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -10,6 +10,7 @@
 
 #include "sweep/entity.hpp"
 #include "sweep/error.hpp"
+#include "sweep/settings.hpp"
 
 namespace sweep {
 namespace {
@@ -151,6 +152,11 @@ double ParametricEntity::move_bound(const double* c, const double* w, double* ea
   if (lo_.empty()) return 0.0;
   Vector3d jac[2];
   eval(c, jac);
+  return move_bound_at(jac, w, each);
+}
+
+double ParametricEntity::move_bound_at(const Vector3d* jac, const double* w, double* each) const {
+  if (lo_.empty()) return 0.0;
   double first = 0.0, w2 = 0.0;
   for (std::size_t j = 0; j < lo_.size(); ++j) {
     const double fj = jac[j].norm() * w[j], wj2 = w[j] * w[j];
@@ -179,7 +185,9 @@ void image_jacobian(const Motion& motion, const std::vector<Eigen::Isometry3d>& 
 }
 
 /// Projected, damped Gauss-Newton for M(q) Gamma(s) = x over the boxes, from z (joints then
-/// entity parameters). True when the residual falls below `eps`.
+/// entity parameters). True when the residual falls below `eps`; false as soon as an iteration
+/// leaves more than Settings::membership_newton_stall of the residual (the caller's search then
+/// splits the box and starts again from the halves' centres).
 bool solve_image(const ParametricEntity& e, const Motion& motion, const Vector3d& x, std::vector<double> z,
                  const std::vector<double>& lo, const std::vector<double>& hi, double eps) {
   const std::size_t n = motion.dof(), k = z.size();
@@ -215,7 +223,9 @@ bool solve_image(const ParametricEntity& e, const Motion& motion, const Vector3d
     }
     if (!improved) return false;
     F = residual(z, true);
+    const double before = f;
     f = F.norm();
+    if (f >= eps && f > Settings::membership_newton_stall * before) return false;  // stalled
   }
   return f < eps;
 }
@@ -229,13 +239,12 @@ bool solve_image(const ParametricEntity& e, const Motion& motion, const Vector3d
 ///   S_j the bound on joint j's speed over the box (`speed`); with an entity parameter a it is
 ///   [i turns] G_a (G_a bounds |dGamma/ds_a| over the box), and between parameters the map's
 ///   Hessian bound.
-/// `P` is the image of the centre and `joint_pose` the joints' transforms there.
+/// `P` is the image of the centre, `joint_pose` the joints' transforms there and `dg` Gamma's
+/// derivatives there.
 double second_order_gap(const ParametricEntity& e, const Motion& motion, const Vector3d& x, const Vector3d& P,
                         const std::vector<Eigen::Isometry3d>& joint_pose, const std::vector<double>& c,
-                        const std::vector<double>& w, const std::vector<double>& speed) {
+                        const std::vector<double>& w, const std::vector<double>& speed, const Vector3d* dg) {
   const std::size_t n = motion.dof(), k = c.size(), m = k - n;
-  Vector3d dg[2];
-  e.eval(c.data() + n, dg);
   Eigen::MatrixXd J(3, k);
   image_jacobian(motion, joint_pose, P, dg, J);
   // the remainder
@@ -259,8 +268,10 @@ double second_order_gap(const ParametricEntity& e, const Motion& motion, const V
     best = std::max(best, lb);
   };
   if (F.norm() > 0) along(F.normalized());
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(J, Eigen::ComputeFullU);
-  along(svd.matrixU().col(2));
+  // (the bound holds for any unit u: the closed-form eigenvector of J J^T's least eigenvalue serves)
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> normal;
+  normal.computeDirect(J * J.transpose());
+  along(normal.eigenvectors().col(0));
   return best - rem;
 }
 
@@ -301,12 +312,14 @@ int swept_image_membership(const ParametricEntity& e, const Motion& motion, cons
     // |dP/dq_i| is the distance of Q_i from joint i's axis (with the pitch); over the box Q_i moves
     // at most by what the inner joints and the entity parameters move it. Innermost first.
     double each[2] = {0.0, 0.0};
-    double move = e.move_bound(c.data() + n, w.data() + n, each);
+    Vector3d dg[2] = {Vector3d::Zero(), Vector3d::Zero()};
+    const Vector3d g = e.eval(c.data() + n, dg);
+    double move = e.move_bound_at(dg, w.data() + n, each);
     double split_move = -1.0;
     std::size_t split = 0;
     for (std::size_t j = 0; j < m; ++j)
       if (each[j] > split_move) { split_move = each[j]; split = n + j; }
-    Vector3d Q = motion.home * e.eval(c.data() + n);
+    Vector3d Q = motion.home * g;
     for (std::size_t i = n; i-- > 0;) {
       const ScrewJoint& j = motion.joints[i];
       speed[i] = 1.0;
@@ -323,7 +336,7 @@ int swept_image_membership(const ParametricEntity& e, const Motion& motion, cons
     }
     const double gap = (Q - x).norm();
     if (gap > move) continue;
-    if (second_order && second_order_gap(e, motion, x, Q, joint_pose, c, w, speed) > 0) continue;
+    if (second_order && second_order_gap(e, motion, x, Q, joint_pose, c, w, speed, dg) > 0) continue;
     if (gap < 0.5 * move && solve_image(e, motion, x, c, lo, hi, eps)) return 1;
     if (move < resolution) {  // no exclusion and no solve within the resolution
       unresolved = true;

@@ -52,6 +52,8 @@ class ParametricEntity {
   /// second-order term from the largest Hessian norm, sampled on a grid over the parameter box and
   /// doubled. When `each` is given, it receives the bound for each parameter varying alone.
   double move_bound(const double* c, const double* w, double* each = nullptr) const;
+  /// The same bound from `jac`, Gamma's derivative at the centre as eval() gives it.
+  double move_bound_at(const Eigen::Vector3d* jac, const double* w, double* each = nullptr) const;
   /// The bound on the second derivatives of Gamma that move_bound uses.
   double hessian_bound() const { return hessian_bound_; }
 

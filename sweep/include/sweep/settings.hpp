@@ -113,6 +113,10 @@ struct Settings {
   /// Sub-boxes a joint-space search may split for one verdict point (chains); a point it cannot
   /// decide is left out and counted as undecided.
   std::size_t membership_budget = 20000;
+  /// A joint-space search looks for a joint and entity value that reaches the point by damped
+  /// Gauss-Newton; it gives up on a start whose iteration leaves more than this fraction of the
+  /// residual (a local minimum off the point: the search splits the box and starts again).
+  static constexpr double membership_newton_stall = 0.5;
   /// The largest fraction of the verdict's samples that may be undecided (undecided probes are
   /// reported only).
   double undecided_fraction = 0.1;
