@@ -65,14 +65,11 @@ double general_engine_volume(const std::string& box_json, const std::string& joi
   REQUIRE_THROWS_AS(in.j(), sweep::InternalError);
   in.core = entity.core.get();
   const auto sd = entity.sd;
-  in.member = [sd, motion, size]() -> sweep::occt::PointTest {
+  const sweep::occt::MemberTestMaker search = [sd, motion, size]() -> sweep::occt::MemberTest {
     auto set = std::make_shared<sweep::StageSweptSet>(*sd, *motion, 1e-9 * size, 20000);
-    return [set](const Eigen::Vector3d& x) {
-      const int r = (*set)(x);
-      if (r < 0) throw sweep::ComputeError("undecided");
-      return r == 1;
-    };
+    return [set](const Eigen::Vector3d& x) { return (*set)(x); };
   };
+  in.member = sweep::occt::decided_or_failed(search, "a cell the search over t does not decide");
   sweep::occt::StageRecord record;
   sweep::occt::Candidates cand;
   const TopoDS_Shape solid = sweep::occt::solid_sweep(in, fit_err, record, &cand, false, nullptr, false);

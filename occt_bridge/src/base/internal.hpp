@@ -15,10 +15,12 @@
 #include <gp_Vec.hxx>
 #include <functional>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "occt_bridge/sweeper.hpp"
 #include "sweep/entity.hpp"
+#include "sweep/error.hpp"
 #include "sweep/motion.hpp"
 #include "sweep/spec.hpp"
 #include "sweep/stage_motion.hpp"
@@ -217,6 +219,19 @@ inline MemberTestMaker always_decided(PointTestMaker m) {
   return [m]() -> MemberTest {
     PointTest t = m();
     return [t](const Eigen::Vector3d& x) { return t(x) ? 1 : 0; };
+  };
+}
+
+/// A test that may not decide, seen as a decided one: a point it leaves undecided throws
+/// ComputeError(`why`) (the cells of an arrangement must each be in or out).
+inline PointTestMaker decided_or_failed(MemberTestMaker m, std::string why) {
+  return [m, why]() -> PointTest {
+    MemberTest t = m();
+    return [t, why](const Eigen::Vector3d& x) {
+      const int r = t(x);
+      if (r < 0) throw ComputeError(why);
+      return r == 1;
+    };
   };
 }
 

@@ -327,17 +327,9 @@ void general_solid_sweep(const Spec& spec, const StageMotion& m, const Sizing& s
   const auto [tol, fit_tol] = run_tolerance(spec.tolerance, size, opt.settings);
   rep.tol_requested = tol;
   const IndependentMembership member = search_over_t(sizing.entity.sd, m, size, opt.settings);
-  const MemberTestMaker search = member.test;
-  StageInput in(raw, 3, spec.motion.stage, box_of(raw).sizes().maxCoeff(), size, tol, fit_tol, 1, 1);
+  StageInput in(raw, 3, spec.motion.stage, extent(raw), size, tol, fit_tol, 1, 1);
   in.core = sizing.entity.core.get();
-  in.member = [search]() -> PointTest {
-    const MemberTest t = search();
-    return [t](const Eigen::Vector3d& x) {
-      const int r = t(x);
-      if (r < 0) throw ComputeError("the search over t could not decide whether a cell is in the swept set");
-      return r == 1;
-    };
-  };
+  in.member = decided_or_failed(member.test, "the search over t could not decide whether a cell is in the swept set");
   if (opt.progress) opt.progress("candidate varieties and the arrangement of their faces");
   record.stages.emplace_back();  // first, so that a failure keeps what the stage did
   StageRecord& stage = record.stages.back();
