@@ -255,14 +255,17 @@ TEST_CASE("Orbit sections: helical sweeps of curves through one point cross alon
   CHECK_FALSE(orbit_patch(a, other, eps, btol));
 }
 
-TEST_CASE("Orbit sections: revolute and prismatic sweeps built with them and with OCCT's general sections agree", "[random]") {
-  // revolute and prismatic sweeps of boxes, spheres, cylinders and cones of the random generator,
-  // both ways, against the orbit-space reference
+namespace {
+
+// Revolute and prismatic sweeps of the random generator's solids but tori
+// (seed `seed`), `per_kind` of each joint kind, built with orbit sections and with OCCT's general
+// sections, both against the orbit-space reference and against each other.
+void compare_orbit_sections(std::uint64_t seed, int per_kind) {
   for (const int kind : {0, 1}) {  // (the generator's joint kinds: revolute, prismatic)
     int compared = 0;
-    for (int i = 0; compared < 8 && i < 200; ++i) {
+    for (int i = 0; compared < per_kind && i < 200; ++i) {
       if (testing::random_case_joint(i) != kind || testing::random_case_kind(i) == 4) continue;
-      const testing::RandomCase c = testing::random_one_joint_case(17, i);
+      const testing::RandomCase c = testing::random_one_joint_case(seed, i);
       const Spec spec = parse_spec(c.spec, ".");
       double ref_err = 0;
       const double ref = testing::reference_volume(spec, 1e-8, &ref_err);
@@ -283,8 +286,18 @@ TEST_CASE("Orbit sections: revolute and prismatic sweeps built with them and wit
         CHECK(std::abs(a.report.volume_brep - b.report.volume_brep) <= 2e-6 * ref);
       }
     }
-    CHECK(compared == 8);
+    CHECK(compared == per_kind);
   }
+}
+
+}  // namespace
+
+TEST_CASE("Orbit sections: revolute and prismatic sweeps built with them and with OCCT's general sections agree", "[random]") {
+  compare_orbit_sections(17, 4);  // a box, a sphere, a cylinder and a cone each
+}
+
+TEST_CASE("Orbit sections: ten revolute and ten prismatic sweeps of another seed both ways", "[bench]") {
+  compare_orbit_sections(29, 10);
 }
 
 TEST_CASE("Orbit sections: extrusions whose profiles cross meet in the segment over the overlap of their ranges") {
