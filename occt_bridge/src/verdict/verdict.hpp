@@ -14,7 +14,8 @@ namespace sweep::occt {
 
 /// The triangles of a shape's faces, outward for a solid (BRepMesh at linear deflection
 /// `deflection`, angular 0.5 rad; the shape keeps the triangulation). With `problem`, the
-/// triangulation is checked: every face triangulated, covering its area (to 5 %), and closed;
+/// triangulation is checked: every face triangulated, covering its area (to 5 %, or to pi
+/// deflection^2 on a small face), and closed;
 /// *problem says what is wrong, or is empty.
 std::vector<Triangle> triangulate(const TopoDS_Shape& shape, double deflection, std::string* problem = nullptr);
 
