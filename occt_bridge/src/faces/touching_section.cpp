@@ -185,13 +185,18 @@ std::optional<std::vector<TopoDS_Edge>> touching_section(const TouchingSweep& sw
     for (std::size_t k = 0; k < dense.size(); ++k) {
       const bool in = good(dense[k]);
       if (in != prev_in && k > 0) {
-        // the crossing of the face's boundary between the two points
-        UV a = dense[k - 1], b = dense[k];
+        // the crossing of the face's boundary between the two points, bisected along the contour:
+        // each point of the chord is first put on the contour across it (a point bisected on the
+        // chord and only then put on the contour would leave the face's boundary by the chord's
+        // sagitta, and its section would stop short of the boundary it must split the face at)
+        const UV d = dense[k] - dense[k - 1];
+        auto on_contour = [&](double lambda) { return root_across(h, dense[k - 1] + lambda * d, d); };
+        double a = 0, b = 1;
         for (int it = 0; it < 50; ++it) {
-          const UV m = 0.5 * (a + b);
-          (good(m) == prev_in ? a : b) = m;
+          const double m = 0.5 * (a + b);
+          (good(on_contour(m)) == prev_in ? a : b) = m;
         }
-        const UV edge_pt = root_across(h, prev_in ? a : b, dense[k] - dense[k - 1]);
+        const UV edge_pt = on_contour(prev_in ? a : b);
         run.push_back(edge_pt);
         if (prev_in) ends_run();
       }
