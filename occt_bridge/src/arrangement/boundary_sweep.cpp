@@ -623,6 +623,7 @@ Crossings crossings_of(const std::vector<Candidate>& cands, BoundaryContext& c) 
         touch_job[k] = it->second;
       }
   }
+  out.touching_sections = int(touch_jobs.size());
   std::vector<std::optional<std::vector<TopoDS_Edge>>> touch_edges(touch_jobs.size());
   std::vector<double> touch_error(touch_jobs.size(), 0.0);
   parallel_for(touch_jobs.size(), [&]() -> std::function<void(std::size_t)> {

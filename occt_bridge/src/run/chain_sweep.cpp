@@ -42,8 +42,9 @@ TopoDS_Shape entity_stage(const StageInput& in, const OrbitSolidPtr& orbit_entit
                                           ? orbit_membership(orbit_placed(orbit_entity, start), j, T)
                                           : trajectory_membership(in.body, j, T, Settings::resolution * in.size);
   // A boundary that left a piece out (a sliver whose crossing with an end copy no section found)
-  // does not close. Crossings traced where sweeps touch the copies are then left to OCCT's general
-  // section; when that does not close either, the arrangement of cells is made instead.
+  // does not close. Crossings traced where sweeps touch the copies (when there were any: not under
+  // a helical joint) are then left to OCCT's general section; when that does not close either,
+  // the arrangement of cells is made instead.
   auto boundary = [&](const Settings& settings) {
     BoundarySweep b = boundary_sweep(in.body, j, T, stage_member, in.size, in.tol, settings, in.stage, in.joint_no);
     merge_step_seconds(record.seconds, b.seconds);
@@ -54,7 +55,7 @@ TopoDS_Shape entity_stage(const StageInput& in, const OrbitSolidPtr& orbit_entit
     return b;
   };
   BoundarySweep b = boundary(opt.settings);
-  if (b.solid.IsNull() && opt.settings.touching_sections) {
+  if (b.solid.IsNull() && opt.settings.touching_sections && b.touching_sections > 0) {
     Settings general = opt.settings;
     general.touching_sections = false;
     step("stage " + std::to_string(in.stage) + ": " + b.failure + "; again with OCCT's sections where sweeps touch");
