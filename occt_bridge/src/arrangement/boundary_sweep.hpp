@@ -20,7 +20,8 @@ struct BoundarySweep {
   std::string failure;  ///< why, when it failed
   double fit_error = 0;
   int candidates = 0, pieces = 0, kept = 0;
-  /// how many crossings were traced where a sweep touches a copy (Settings::touching_sections)
+  /// how many pairs of a sweep and a copy it touches had their crossings traced
+  /// (Settings::touching_sections; none under a helical joint)
   int touching_sections = 0;
   /// the candidates' varieties and each candidate face's variety (an index into them)
   std::vector<Variety> varieties;
