@@ -168,6 +168,16 @@ TableRow table_row(const std::string& name) {
   return *row;
 }
 
+/// The case of the table's row run in process (stopped after 120 s); `steps` receives its progress.
+occt::RunResult run_row(const TableRow& row, std::vector<std::string>* steps = nullptr) {
+  const testing::RandomCase c = testing::random_one_joint_case(row.seed, row.index);
+  REQUIRE(c.name == row.name);
+  occt::RunOptions opt;
+  opt.stop = occt::stop_after(120);
+  if (steps) opt.progress = [steps](const std::string& s) { steps->push_back(s); };
+  return occt::run_sweep(parse_spec(c.spec, "."), opt);
+}
+
 }  // namespace
 
 TEST_CASE("Random cases: a solid with a sliver face is judged against its triangles, not point by point by OCCT") {
@@ -175,11 +185,7 @@ TEST_CASE("Random cases: a solid with a sliver face is judged against its triang
   // 1e-4 in area, loses 6 % of it to the chords of its triangulation, far less than the band the
   // samples leave out; OCCT's classifier took 30 s for the verdict's 4,600 points
   const TableRow row = table_row("cone_helical_33");
-  const testing::RandomCase c = testing::random_one_joint_case(row.seed, row.index);
-  REQUIRE(c.name == row.name);
-  occt::RunOptions opt;
-  opt.stop = occt::stop_after(120);
-  const occt::RunResult r = occt::run_sweep(parse_spec(c.spec, "."), opt);
+  const occt::RunResult r = run_row(row);
   INFO(r.report.message << " ; " << r.report.verdict_classifier);
   REQUIRE(r.report.ok());
   CHECK(r.report.verdict_classifier.find("triangulation") != std::string::npos);
@@ -194,13 +200,8 @@ TEST_CASE("Random cases: solids turned about axes through them close their bound
   // then did not close and the stage was made again with OCCT's sections (19 s instead of 9 s)
   for (const char* name : {"cylinder_revolute_38", "cone_revolute_21"}) {
     const TableRow row = table_row(name);
-    const testing::RandomCase c = testing::random_one_joint_case(row.seed, row.index);
-    REQUIRE(c.name == row.name);
-    occt::RunOptions opt;
-    opt.stop = occt::stop_after(120);
     std::vector<std::string> steps;
-    opt.progress = [&](const std::string& s) { steps.push_back(s); };
-    const occt::RunResult r = occt::run_sweep(parse_spec(c.spec, "."), opt);
+    const occt::RunResult r = run_row(row, &steps);
     INFO(name << ": " << r.report.message);
     REQUIRE(r.report.ok());
     for (const std::string& s : steps) {
@@ -217,13 +218,8 @@ TEST_CASE("Random cases: a helical stage whose boundary does not close goes to t
   // helical sweeps touch the copies (their faces are fitted), so the boundary made again with
   // OCCT's sections there would be the same one (3 s of its 14.6)
   const TableRow row = table_row("box_helical_48");
-  const testing::RandomCase c = testing::random_one_joint_case(row.seed, row.index);
-  REQUIRE(c.name == row.name);
-  occt::RunOptions opt;
-  opt.stop = occt::stop_after(120);
   std::vector<std::string> steps;
-  opt.progress = [&](const std::string& s) { steps.push_back(s); };
-  const occt::RunResult r = occt::run_sweep(parse_spec(c.spec, "."), opt);
+  const occt::RunResult r = run_row(row, &steps);
   INFO(r.report.message);
   for (const std::string& s : steps) {
     INFO(s);
