@@ -68,6 +68,12 @@ RunOutcome run_by_cli(const testing::RandomCase& c, double time_limit) {
   return o;
 }
 
+/// Whether `volume` is right against reference `ref` (error estimate `ref_err`): within the
+/// requested relative volume (1e-6) and the reference's own error.
+bool right_volume(double volume, double ref, double ref_err) {
+  return std::abs(volume - ref) <= 1e-6 * ref + 3 * ref_err;
+}
+
 /// Runs case `c` (by the command line, stopped after `time_limit` seconds when positive, which
 /// makes it failed; else in this process) and judges it against reference `ref` (error estimate
 /// `ref_err`): right within the requested relative volume (1e-6) and the reference's own error,
@@ -81,7 +87,7 @@ Outcome run_case(const testing::RandomCase& c, double ref, double ref_err, doubl
   if (!r.ok) return Outcome::Failed;
   INFO(c.name << ": " << c.spec);
   CHECK(rel <= 1e-4);  // a solid off by more is wrong: it must not be ok
-  if (rel <= 1e-6 + 3 * ref_err / ref) return Outcome::Right;
+  if (right_volume(r.volume, ref, ref_err)) return Outcome::Right;
   return rel <= 1e-4 ? Outcome::Imprecise : Outcome::WrongOk;
 }
 
@@ -190,7 +196,7 @@ TEST_CASE("Random cases: a solid with a sliver face is judged against its triang
   REQUIRE(r.report.ok());
   CHECK(r.report.verdict_classifier.find("triangulation") != std::string::npos);
   CHECK(r.report.verdict_classifier.find("OCCT's solid classifier") == std::string::npos);
-  CHECK(std::abs(r.report.volume_brep - row.volume) <= 1e-6 * row.volume + 3 * row.error);
+  CHECK(right_volume(r.report.volume_brep, row.volume, row.error));
 }
 
 TEST_CASE("Random cases: solids turned about axes through them close their boundary from the traced crossings") {
@@ -209,7 +215,7 @@ TEST_CASE("Random cases: solids turned about axes through them close their bound
       CHECK(s.find("again") == std::string::npos);
       CHECK(s.find("cells") == std::string::npos);
     }
-    CHECK(std::abs(r.report.volume_brep - row.volume) <= 1e-6 * row.volume + 3 * row.error);
+    CHECK(right_volume(r.report.volume_brep, row.volume, row.error));
   }
 }
 
@@ -225,6 +231,6 @@ TEST_CASE("Random cases: a helical stage whose boundary does not close goes to t
     INFO(s);
     CHECK(s.find("again with OCCT's sections") == std::string::npos);
   }
-  if (r.report.ok()) CHECK(std::abs(r.report.volume_brep - row.volume) <= 1e-6 * row.volume + 3 * row.error);
+  if (r.report.ok()) CHECK(right_volume(r.report.volume_brep, row.volume, row.error));
   else CHECK(!r.report.message.empty());
 }

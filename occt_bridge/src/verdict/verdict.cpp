@@ -131,6 +131,9 @@ std::vector<Triangle> triangulate(const TopoDS_Shape& shape, double deflection, 
   BRepMesh_IncrementalMesh mesh(shape, deflection, false, 0.5, true);
   std::vector<Triangle> out;
   const std::vector<FaceMesh> faces = face_meshes(shape);
+  // the most area of a face the triangles may miss and still hold every point of it within two
+  // deflections (below)
+  const double sliver_area = M_PI * deflection * deflection;
   if (problem) {
     // a face without triangles is a hole in the mesh, unless it has no area, or so little that no
     // point of it is a deflection from its edges (below: the mesh must then still be closed)
@@ -142,7 +145,7 @@ std::vector<Triangle> triangulate(const TopoDS_Shape& shape, double deflection, 
       const TopoDS_Face& f = TopoDS::Face(ex.Current());
       TopLoc_Location loc;
       missing += BRep_Tool::Triangulation(f, loc).IsNull() &&
-                 std::abs(face_area(f)) > std::max(1e-9 * total, M_PI * deflection * deflection);
+                 std::abs(face_area(f)) > std::max(1e-9 * total, sliver_area);
     }
     if (missing > 0) *problem = std::to_string(missing) + " faces have no triangulation";
   }
@@ -157,7 +160,7 @@ std::vector<Triangle> triangulate(const TopoDS_Shape& shape, double deflection, 
     // deflection, so a loss up to pi deflection^2 keeps every point of the face within two
     // deflections of the triangles, inside the band the samples leave out.
     const double exact = face_area(fm.face), loss = std::abs(fm.area - exact);
-    if (loss > 0.05 * std::abs(exact) + 1e-9 && loss > M_PI * deflection * deflection)
+    if (loss > 0.05 * std::abs(exact) + 1e-9 && loss > sliver_area)
       *problem = "the triangulation of a face covers " + std::to_string(fm.area) + " of its area " + std::to_string(exact);
   }
   if (problem && problem->empty()) {
