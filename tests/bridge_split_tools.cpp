@@ -2,6 +2,8 @@
 // and curves get their curves on the face's surface (against the surfaces' own equations).
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepTools.hxx>
+#include <BRep_Builder.hxx>
 #include <BRep_Tool.hxx>
 #include <GC_MakeArcOfCircle.hxx>
 #include <Geom2d_Curve.hxx>
@@ -13,6 +15,7 @@
 #include <TopExp_Explorer.hxx>
 #include <TopTools_ListOfShape.hxx>
 #include <TopoDS.hxx>
+#include <TopoDS_Iterator.hxx>
 #include <gp_Ax3.hxx>
 #include <gp_Circ.hxx>
 #include <gp_Pln.hxx>
@@ -152,4 +155,39 @@ TEST_CASE("Split tools: a curve running past the end of a bounded surface fails 
   // a line within it gets its curve
   const TopoDS_Edge within = BRepBuilderAPI_MakeEdge(gp_Pnt(1, 0, 0.25), gp_Pnt(1, 0, 0.75)).Edge();
   CHECK(sweep::occt::add_curves_on_face(face, {within}, 1e-9, 1e-6) == 1);
+}
+
+TEST_CASE("Split tools: a curve near the fold of an extrusion gets its curve on the sheet it lies on") {
+  // a face of a torus extruded obliquely (the extrusion of its grazing curve, whose outline along
+  // the direction has cusps, so that the surface folds back close to itself) and a section curve
+  // on it that runs past the fold: projected from one point to the next, the curve's points
+  // settled on the other sheet, up to 1e-4 away, and the splitter projected it instead, 1e-3 off
+  TopoDS_Shape both;
+  BRep_Builder builder;
+  REQUIRE(BRepTools::Read(both, SWEEP_SOURCE_DIR "/tests/data/folded_extrusion_section.brep", builder));
+  TopoDS_Face face;
+  TopoDS_Edge section;
+  for (TopoDS_Iterator it(both); it.More(); it.Next()) {
+    if (it.Value().ShapeType() == TopAbs_FACE) face = TopoDS::Face(it.Value());
+    if (it.Value().ShapeType() == TopAbs_EDGE) section = TopoDS::Edge(it.Value());
+  }
+  REQUIRE_FALSE(face.IsNull());
+  REQUIRE_FALSE(section.IsNull());
+  double f, l;
+  REQUIRE(BRep_Tool::CurveOnSurface(section, face, f, l).IsNull());
+  const double target = 3.4e-8, accept = 3.4e-6;  // the run's fit and requested tolerances
+  CHECK(sweep::occt::add_curves_on_face(face, {section}, target, accept) == 1);
+  const Handle(Geom2d_Curve) pc = BRep_Tool::CurveOnSurface(section, face, f, l);
+  REQUIRE_FALSE(pc.IsNull());
+  const Handle(Geom_Surface) S = BRep_Tool::Surface(face);
+  double cf, cl;
+  const Handle(Geom_Curve) c = BRep_Tool::Curve(section, cf, cl);
+  double worst = 0;
+  for (int k = 0; k <= 400; ++k) {
+    const double s = f + (l - f) * k / 400;
+    const gp_Pnt2d q = pc->Value(s);
+    worst = std::max(worst, S->Value(q.X(), q.Y()).Distance(c->Value(s)));
+  }
+  CHECK(worst <= 10 * target);
+  CHECK(BRep_Tool::Tolerance(section) <= accept);
 }

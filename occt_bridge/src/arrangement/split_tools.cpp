@@ -8,6 +8,7 @@
 #include <Bnd_Box.hxx>
 #include <Geom2dAPI_Interpolate.hxx>
 #include <Geom2d_BSplineCurve.hxx>
+#include <GeomAPI_ProjectPointOnSurf.hxx>
 #include <Geom_Curve.hxx>
 #include <Geom_Surface.hxx>
 #include <Precision.hxx>
@@ -101,6 +102,20 @@ gp_Pnt2d nearest_turn(const Handle(Geom_Surface)& S, gp_Pnt2d q, const gp_Pnt2d&
   return q;
 }
 
+/// The point of S nearest to p, by a search over all of S: where S folds back close to itself (an
+/// extrusion of a curve that turns back), the projection from the previous point of a curve can
+/// settle on the wrong sheet. *uv is kept when the search finds nothing closer than `gap`.
+void nearest_on_surface(const Handle(Geom_Surface)& S, const gp_Pnt& p, double gap, gp_Pnt2d* uv) {
+  try {
+    GeomAPI_ProjectPointOnSurf search(p, S);
+    if (search.NbPoints() == 0 || !(search.LowerDistance() < gap)) return;
+    double u, v;
+    search.LowerDistanceParameters(u, v);
+    uv->SetCoord(u, v);
+  } catch (const Standard_Failure&) {
+  }
+}
+
 /// The curve of `e` on surface S, its parameters those of the edge's curve: points of the curve
 /// projected onto S (following the periodic surfaces' turns) and interpolated, on finer samples
 /// until the surface at the fitted curve lies within `target` of the edge's curve at the points
@@ -120,6 +135,7 @@ Handle(Geom2d_Curve) fitted_curve_on(const TopoDS_Edge& e, const Handle(Geom_Sur
       const double s = f + (l - f) * k / n;
       const gp_Pnt p = c->Value(s);
       gp_Pnt2d q = k == 0 ? sas.ValueOfUV(p, prec) : sas.NextValueOfUV(uv->Value(k), p, prec);
+      if (sas.Gap() > target) nearest_on_surface(S, p, sas.Gap(), &q);
       if (k > 0) q = nearest_turn(S, q, uv->Value(k));
       uv->SetValue(k + 1, q);
       params->SetValue(k + 1, s);
