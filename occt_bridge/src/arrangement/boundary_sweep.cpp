@@ -840,7 +840,7 @@ void sew_kept(const std::vector<Piece>& all, std::vector<int> keep, BoundaryCont
   BoundarySweep& out = c.out;
   // 6. The kept pieces, oriented outward, sewn into a solid.
   const auto t_sew = Clock::now();
-  const double gap = std::max(Settings::sewing_gap * size, 10 * out.fit_error);
+  double gap = std::max(Settings::sewing_gap * size, 10 * out.fit_error);
   auto sew = [&](std::unique_ptr<BRepBuilderAPI_Sewing>& sewing) {
     sewing = std::make_unique<BRepBuilderAPI_Sewing>(gap);
     out.candidate_faces.clear();
@@ -891,6 +891,13 @@ void sew_kept(const std::vector<Piece>& all, std::vector<int> keep, BoundaryCont
       for (std::size_t i : fill) keep[i] = 0;
       sew(sewing);
     }
+  }
+  // Pieces left apart by more than the sewing gap but less than the requested tolerance (the ends
+  // of two sections of one crossing, near where the sweeps touch) are sewn across it: the solid's
+  // measured geometric error is still held to that tolerance.
+  if (sewing->NbFreeEdges() > 0 && gap < c.tol) {
+    gap = c.tol;
+    sew(sewing);
   }
   const TopoDS_Shape sewn = sewing->SewedShape();
   BRepBuilderAPI_MakeSolid ms;
