@@ -520,6 +520,19 @@ void group_by_surface(std::vector<Candidate>& cands, BoundaryContext& c) {
         merged.push_back(cands[members[0]]);
         continue;
       }
+      // Faces of one copy of the body (a copy split at its grazing curves) meet only along their
+      // edges: their arrangement is themselves (OCCT's took minutes to find that on a torus).
+      const Candidate::Kind kind0 = cands[members[0]].kind;
+      if (kind0 != Candidate::Kind::Swept &&
+          std::all_of(members.begin(), members.end(), [&](std::size_t i) { return cands[i].kind == kind0; })) {
+        for (std::size_t i : members) {
+          merged.push_back(cands[i]);
+          merged.back().group = r;
+        }
+        ++out.copy_groups;
+        continue;
+      }
+      ++out.arranged_groups;
       TopTools_ListOfShape args;
       for (std::size_t i : members) args.Append(cands[i].face);
       BRepAlgoAPI_BuilderAlgo gf;

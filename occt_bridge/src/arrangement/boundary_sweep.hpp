@@ -23,6 +23,9 @@ struct BoundarySweep {
   /// how many pairs of a sweep and a copy it touches had their crossings traced
   /// (Settings::touching_sections; none under a helical joint)
   int touching_sections = 0;
+  /// groups of candidates on one surface: those of one copy's faces (kept as they are), and the
+  /// others, which OCCT's arrangement replaced
+  int copy_groups = 0, arranged_groups = 0;
   /// the candidates' varieties and each candidate face's variety (an index into them)
   std::vector<Variety> varieties;
   std::vector<TopoDS_Face> candidate_faces;
