@@ -97,10 +97,15 @@ std::vector<SurfacePoint> edge_samples(const TopoDS_Face& f, int count) {
 }
 
 /// The body with its faces split at their grazing curves (shared edges kept); `grazing` receives
-/// the number of grazing curves, `fit_error` is raised to their largest measured error.
-TopoDS_Shape split_at_grazing(const TopoDS_Shape& body, const ScrewJoint& j, double fit_tol, double size,
-                              int* grazing, double* fit_error) {
+/// the number of grazing curves, `fit_error` is raised to their largest measured error. When the
+/// pieces come out with edges wider than Settings::reprojected_split_ratio times `tol` (the
+/// splitter's own projection of a curve that ends at a cone's apex widened them to 0.015), the
+/// curves are given their curves on their faces, fitted to `fit_tol` (accepted within `tol`), when
+/// `curves_on_faces`, and the faces split again.
+TopoDS_Shape split_at_grazing(const TopoDS_Shape& body, const ScrewJoint& j, double fit_tol, double tol, double size,
+                              bool curves_on_faces, int* grazing, double* fit_error) {
   TopTools_ListOfShape tools;
+  std::vector<std::pair<TopoDS_Face, TopoDS_Edge>> on_faces;
   *grazing = 0;
   // A face closed on itself (a seam: a cylinder's band, a sphere) is cut in three by exact iso-lines
   // a third of a period apart, so that every edge has two faces (a seam can be a silhouette; two
@@ -136,14 +141,24 @@ TopoDS_Shape split_at_grazing(const TopoDS_Shape& body, const ScrewJoint& j, dou
   }
   for (TopExp_Explorer ex(body, TopAbs_FACE); ex.More(); ex.Next()) {
     for (const auto& g : grazing_curves(TopoDS::Face(ex.Current()), VelocityField(j), fit_tol, size)) {
-      tools.Append(grazing_edge(g, TopoDS::Face(ex.Current()), fit_tol).edge);
+      const TopoDS_Edge e = grazing_edge(g, TopoDS::Face(ex.Current()), fit_tol).edge;
+      on_faces.emplace_back(TopoDS::Face(ex.Current()), e);
+      tools.Append(e);
       *fit_error = std::max(*fit_error, g.error);
       ++*grazing;
     }
   }
   if (tools.IsEmpty()) return body;
-  const TopoDS_Shape split = split_by_edges(body, tools, Settings::resolution * size, SplitMode::NonDestructive);
+  TopoDS_Shape split = split_by_edges(body, tools, Settings::resolution * size, SplitMode::NonDestructive);
   if (split.IsNull()) throw ComputeError("the body's faces could not be split at their grazing curves");
+  if (curves_on_faces && max_tolerance(split) > Settings::reprojected_split_ratio * tol) {
+    int added = 0;
+    for (const auto& [face, e] : on_faces) added += add_curves_on_face(face, {e}, fit_tol, tol);
+    if (added > 0) {
+      const TopoDS_Shape again = split_by_edges(body, tools, Settings::resolution * size, SplitMode::NonDestructive);
+      if (!again.IsNull()) split = again;
+    }
+  }
   return split;
 }
 
@@ -398,7 +413,7 @@ std::vector<Candidate> candidates_of(const TopoDS_Shape& body, BoundaryContext& 
   // 1. The body's faces split at their grazing curves, each piece facing one way. Closed faces are
   //    halved first, so that every edge has two faces (a seam can be a silhouette).
   int grazing = 0;
-  const TopoDS_Shape split = split_at_grazing(body, j, fit_tol, size, &grazing, &out.fit_error);
+  const TopoDS_Shape split = split_at_grazing(body, j, fit_tol, ctx.tol, size, settings.curves_on_faces, &grazing, &out.fit_error);
   TopTools_IndexedMapOfShape pieces;
   TopExp::MapShapes(split, TopAbs_FACE, pieces);
   std::vector<Facing> face_facing(pieces.Extent() + 1, Facing::Unknown);
