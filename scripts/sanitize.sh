@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Our code under AddressSanitizer and UndefinedBehaviorSanitizer (clang), in one build, build-san/
-# (-O1 with line tables, our code instrumented and carrying libFuzzer's coverage, OCCT as Debian
+# (-O1, our code instrumented and carrying libFuzzer's coverage, OCCT as Debian
 # ships it). Steps:
 #   build [core]   builds the core tests, the two fuzzers and (but with core) the bridge's quick tests
 #   core [SECONDS] runs the core tests (but the two slow volume integrations), then fuzzes the
@@ -24,7 +24,7 @@ build() {
     occt=OFF targets=(core_tests fuzz_spec fuzz_expr)
   fi
   CC=clang CXX=clang++ cmake -S . -B "$out" -DCMAKE_BUILD_TYPE=Release \
-    -DCMAKE_CXX_FLAGS_RELEASE="-O1 -gline-tables-only -DNDEBUG" -DSWEEP_BUILD_OCCT="$occt" \
+    -DCMAKE_CXX_FLAGS_RELEASE="-O1 -DNDEBUG" -DSWEEP_BUILD_OCCT="$occt" \
     -DSWEEP_SANITIZE=ON -DSWEEP_FUZZ=ON >/dev/null
   cmake --build "$out" -j"$(nproc)" --target "${targets[@]}" >/dev/null
   echo "sanitize: built ${targets[*]} in $out"
