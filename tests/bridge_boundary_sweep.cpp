@@ -22,7 +22,8 @@ namespace {
 sweep::occt::BoundarySweep stage_of(const TopoDS_Shape& body, const sweep::ScrewJoint& j, double size) {
   const sweep::Settings settings;
   const double tol = settings.default_tolerance * size;
-  const auto member = sweep::occt::trajectory_membership(body, j, j.hi, sweep::Settings::resolution * size);
+  const auto member = sweep::occt::trajectory_membership(body, sweep::occt::screw_stage_motion(j, j.hi),
+                                                         sweep::Settings::resolution * size);
   return sweep::occt::boundary_sweep(body, j, j.hi, member, size, tol, settings, 1, 1);
 }
 

@@ -15,6 +15,8 @@
 #include <random>
 
 #include "base/internal.hpp"
+#include "sweep/expr.hpp"
+#include "sweep/stage_motion.hpp"
 
 namespace {
 
@@ -100,7 +102,8 @@ TEST_CASE("Trajectory membership: rays agree with OCCT's classifier, and the swe
   const double T = 2.0;
   j.lo = 0.0;
   j.hi = T;
-  sweep::occt::TrajectoryMembership member(body, true, j, T, 1e-9 * 10);
+  const sweep::ScrewStage motion(j);
+  sweep::occt::TrajectoryMembership member(body, true, motion, 1e-9 * 10);
 
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> u(-6.0, 6.0);
@@ -149,7 +152,8 @@ TEST_CASE("Trajectory membership: points just off an extruded ellipse, where a r
   j.type = sweep::JointType::Prismatic;
   j.direction = Eigen::Vector3d::UnitX();
   j.hi = 3;
-  sweep::occt::TrajectoryMembership member(body, true, j, 3.0, 6e-9);
+  const sweep::ScrewStage motion(j);
+  sweep::occt::TrajectoryMembership member(body, true, motion, 6e-9);
   const Eigen::Vector3d p(-1.31276168, 0.338665238, 0.444533241);
   const Eigen::Vector3d n = Eigen::Vector3d(p.x() / 2.25, p.y() / 0.49, 0).normalized();
   for (const double off : {2.4e-5, 1e-4, 1e-3}) {
@@ -159,4 +163,84 @@ TEST_CASE("Trajectory membership: points just off an extruded ellipse, where a r
     CHECK(member.ray_inside(p - off * n) == 1);
     CHECK(member(p - off * n));
   }
+}
+
+namespace {
+
+/// Signed distance to the box [lo, hi] (negative inside), exact.
+double box_distance(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, const Eigen::Vector3d& p) {
+  const Eigen::Vector3d q = (p - 0.5 * (lo + hi)).cwiseAbs() - 0.5 * (hi - lo);
+  return q.cwiseMax(0.0).norm() + std::min(q.maxCoeff(), 0.0);
+}
+
+/// The trajectory test of a box under `m` against the box's exact distance along each point's path
+/// back through the motion, sampled densely: points whose sampled path comes well inside, or stays
+/// farther out than the sampling can hide, are compared. Returns {compared, inside}.
+std::pair<int, int> compare_box_sweep(const sweep::StageMotion& m, double speed) {
+  const Eigen::Vector3d lo(-0.5, -0.4, -1), hi(0.5, 0.4, 1);
+  const TopoDS_Shape body = BRepPrimAPI_MakeBox(gp_Pnt(lo.x(), lo.y(), lo.z()), gp_Pnt(hi.x(), hi.y(), hi.z())).Shape();
+  sweep::occt::TrajectoryMembership member(body, true, m, 1e-8);
+  Eigen::AlignedBox3d reach;
+  for (int k = 0; k <= 64; ++k)
+    for (int c = 0; c < 8; ++c)
+      reach.extend(m.transform(m.lo() + (m.hi() - m.lo()) * k / 64) *
+                   Eigen::Vector3d(Eigen::AlignedBox3d(lo, hi).corner(Eigen::AlignedBox3d::CornerType(c))));
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const int n = 10000;
+  int compared = 0, inside = 0;
+  for (int it = 0; it < 400; ++it) {
+    const Eigen::Vector3d x = reach.min() + (reach.sizes().array() * Eigen::Array3d(u(rng), u(rng), u(rng))).matrix();
+    double closest = 1e300;
+    for (int k = 0; k <= n; ++k) {
+      const double t = m.lo() + (m.hi() - m.lo()) * k / n;
+      closest = std::min(closest, box_distance(lo, hi, m.body_point(t, x)));
+    }
+    // between two samples the path moves at most speed (|x| + 1) (hi - lo) / n
+    const double gap = speed * (x.norm() + 1) * (m.hi() - m.lo()) / n;
+    if (std::abs(closest) < gap + 1e-3) continue;
+    ++compared;
+    inside += closest < 0;
+    CAPTURE(x.transpose(), closest);
+    CHECK(member(x) == (closest < 0));
+  }
+  return {compared, inside};
+}
+
+sweep::Expr texpr(const std::string& s) { return sweep::Expr::parse(s, {"t"}); }
+
+}  // namespace
+
+TEST_CASE("Trajectory membership: a box rolled along a path that is no screw, against its exact distance") {
+  // seed 001's rolling motion (x -> (0, 4t, 0) + R_x(pi t) x), and a path that keeps no plane
+  const sweep::Expr roll[3] = {texpr("0"), texpr("4*t"), texpr("0")};
+  const sweep::PathMotion rolling(0, 1, roll, {sweep::PathRotation{{texpr("1"), texpr("0"), texpr("0")}, texpr("pi*t")}});
+  const sweep::Expr wander[3] = {texpr("t"), texpr("t^2"), texpr("sin(t)")};
+  const sweep::PathMotion wandering(0, 2, wander, {sweep::PathRotation{{texpr("0.3"), texpr("1"), texpr("t")}, texpr("0.7*t")}});
+  for (const auto& [m, speed] : {std::pair<const sweep::StageMotion*, double>{&rolling, 20.0}, {&wandering, 20.0}}) {
+    REQUIRE_FALSE(m->as_screw(2.0));
+    const auto [compared, inside] = compare_box_sweep(*m, speed);
+    CHECK(compared > 300);
+    CHECK(inside > 40);
+  }
+}
+
+TEST_CASE("Trajectory membership: a screw that does not start at the body's frame") {
+  // a helical joint after a home pose: the paths are the screw's from its start, carried back
+  sweep::ScrewJoint j;
+  j.type = sweep::JointType::Helical;
+  j.point = Eigen::Vector3d(1.5, 0.2, 0);
+  j.direction = Eigen::Vector3d(0.1, 0.3, 1).normalized();
+  j.pitch = 0.4;
+  j.lo = 0.5;
+  j.hi = 3.5;
+  Eigen::Isometry3d home = Eigen::Isometry3d::Identity();
+  home.linear() = Eigen::AngleAxisd(0.6, Eigen::Vector3d(1, 1, 0).normalized()).toRotationMatrix();
+  home.translation() = Eigen::Vector3d(0.3, -0.2, 0.4);
+  const sweep::ScrewStage motion(j, home);
+  REQUIRE(motion.as_screw(2.0));
+  REQUIRE_FALSE(motion.as_screw(2.0)->start.isApprox(Eigen::Isometry3d::Identity(), 1e-6));
+  const auto [compared, inside] = compare_box_sweep(motion, 4.0);
+  CHECK(compared > 300);
+  CHECK(inside > 40);
 }

@@ -189,7 +189,7 @@ PointTest stage_trajectory_membership(const StageInput& in, double tol_factor) {
   auto by_trajectory = std::make_shared<std::unique_ptr<TrajectoryMembership>>();
   return [in, by_trajectory, tol_factor](const Eigen::Vector3d& x) {
     if (!*by_trajectory)
-      *by_trajectory = std::make_unique<TrajectoryMembership>(in.body, in.dim == 3, in.j(), in.T(), tol_factor * in.size);
+      *by_trajectory = std::make_unique<TrajectoryMembership>(in.body, in.dim == 3, *in.motion, tol_factor * in.size);
     return (**by_trajectory)(x);
   };
 }
@@ -200,9 +200,10 @@ PointTestMaker orbit_membership(const OrbitSolidPtr& start, const ScrewJoint& j,
   };
 }
 
-PointTestMaker trajectory_membership(const TopoDS_Shape& body, const ScrewJoint& j, double T, double ttol, bool solid) {
-  return [body, j, T, ttol, solid]() -> PointTest {
-    auto test = std::make_shared<TrajectoryMembership>(body, solid, j, T, ttol);
+PointTestMaker trajectory_membership(const TopoDS_Shape& body, std::shared_ptr<const StageMotion> motion, double ttol,
+                                     bool solid) {
+  return [body, motion, ttol, solid]() -> PointTest {
+    auto test = std::make_shared<TrajectoryMembership>(body, solid, *motion, ttol);
     return [test](const Eigen::Vector3d& x) { return (*test)(x); };
   };
 }

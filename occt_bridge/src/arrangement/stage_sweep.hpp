@@ -166,10 +166,11 @@ PointTest stage_trajectory_membership(const StageInput& in, double tol_factor);
 /// Membership in the sweep of a primitive (at its start pose) by joint j over [0, T], from its
 /// orbit intervals: one test per thread.
 PointTestMaker orbit_membership(const OrbitSolidPtr& start, const ScrewJoint& j, double T);
-/// Membership in the sweep of a solid (at its start pose) by joint j over [0, T], from each
-/// point's trajectory against the solid's faces: one test per thread. `solid` false: the body is
-/// faces only (a surface), and a point is swept when its trajectory meets one.
-PointTestMaker trajectory_membership(const TopoDS_Shape& body, const ScrewJoint& j, double T, double ttol,
+/// Membership in the sweep of a solid under `motion` (which moves `body` as given), from each
+/// point's trajectory against the solid's faces (TrajectoryMembership): one test per thread.
+/// `solid` false: the body is faces only (a surface), and a point is swept when its trajectory
+/// meets one.
+PointTestMaker trajectory_membership(const TopoDS_Shape& body, std::shared_ptr<const StageMotion> motion, double ttol,
                                      bool solid = true);
 
 /// Leaves out candidates that are the same face reached twice (e.g. by symmetric edges).

@@ -243,12 +243,15 @@ TopoDS_Shape solid_from_boundary_faces(const std::vector<TopoDS_Face>& split, co
                                        double size, int* kept = nullptr,
                                        std::vector<TopoDS_Edge>* free_edges = nullptr);
 
-/// Point membership in the sweep of `body` (placed at the start of the range) by joint j over
-/// [0, T]: x is swept when its path back through the motion, y(t) = exp(-xi t) x, meets the body's
-/// boundary, or (for a solid body) starts inside it. Keeps OCCT state: one per thread.
+/// Point membership in the sweep of `body` under a one-parameter motion M (M(t) body is the body at
+/// t): x is swept when its path back through the motion, y(t) = M(t)^-1 x for t in [lo, hi], meets
+/// the body's boundary, or (for a solid body) starts inside it. The path is exact when the motion
+/// is one screw (a segment, a circle, or a helix fitted within `tol`), and otherwise the image of x
+/// under the motion's inverse poses, fitted once within `tol` over the region the body sweeps.
+/// Keeps OCCT state: one per thread. The motion must outlive it.
 class TrajectoryMembership {
  public:
-  TrajectoryMembership(const TopoDS_Shape& body, bool solid, const ScrewJoint& j, double T, double tol);
+  TrajectoryMembership(const TopoDS_Shape& body, bool solid, const StageMotion& motion, double tol);
   ~TrajectoryMembership();
   TrajectoryMembership(const TrajectoryMembership&) = delete;
   TrajectoryMembership& operator=(const TrajectoryMembership&) = delete;

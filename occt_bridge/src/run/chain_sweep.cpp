@@ -40,7 +40,7 @@ TopoDS_Shape entity_stage(const StageInput& in, const OrbitSolidPtr& orbit_entit
   }
   const PointTestMaker stage_member = orbit_entity
                                           ? orbit_membership(orbit_placed(orbit_entity, start), j, T)
-                                          : trajectory_membership(in.body, j, T, Settings::resolution * in.size);
+                                          : trajectory_membership(in.body, in.motion, Settings::resolution * in.size);
   // A boundary that left a piece out (a sliver whose crossing with an end copy no section found)
   // does not close. Crossings traced where sweeps touch the copies (when there were any: not under
   // a helical joint) are then left to OCCT's general section; when that does not close either,

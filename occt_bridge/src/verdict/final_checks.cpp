@@ -32,7 +32,7 @@ IndependentMembership independent_membership(const RunEntity& run_entity, const 
   if (n == 1 && entity.dimension() == 3 && !sd) {
     const ScrewJoint j = clipped.joints[0];
     const TopoDS_Shape body = moved(moved(raw, clipped.home), j.transform(j.lo));
-    return {always_decided(trajectory_membership(body, j, j.hi - j.lo, Settings::resolution * size)),
+    return {always_decided(trajectory_membership(body, screw_stage_motion(j, j.hi - j.lo), Settings::resolution * size)),
             "trajectories against the entity's faces", {}};
   }
   if (n == 1 && entity.dimension() == 2 && pe) {
@@ -43,7 +43,8 @@ IndependentMembership independent_membership(const RunEntity& run_entity, const 
     // undecided).
     const ScrewJoint j = clipped.joints[0];
     const TopoDS_Shape body = moved(moved(raw, clipped.home), j.transform(j.lo));
-    const PointTestMaker by_trajectory = trajectory_membership(body, j, j.hi - j.lo, Settings::resolution * size, false);
+    const PointTestMaker by_trajectory =
+        trajectory_membership(body, screw_stage_motion(j, j.hi - j.lo), Settings::resolution * size, false);
     return {[by_trajectory, pe, clipped, size, budget]() -> MemberTest {
               const PointTest meets = by_trajectory();
               return [meets, pe, clipped, size, budget](const Eigen::Vector3d& x) {
@@ -251,7 +252,8 @@ void monte_carlo_check(const RunEntity& run_entity, const Motion& clipped, const
     const ScrewJoint& j = clipped.joints[0];
     const double T = j.hi - j.lo;
     TopoDS_Shape body = moved(moved(raw, clipped.home), j.transform(j.lo));
-    TrajectoryMembership by_trajectory(body, rep.dimension == 3 && entity.dimension() == 3, j, T, Settings::resolution * size);
+    TrajectoryMembership by_trajectory(body, rep.dimension == 3 && entity.dimension() == 3, *screw_stage_motion(j, T),
+                                       Settings::resolution * size);
     mc = monte_carlo_volume([&](const Eigen::Vector3d& x) { return by_trajectory(x); }, box,
                             std::min<std::size_t>(settings.mc_samples, 20000), settings.seed);
   } else if (pe) {

@@ -8,6 +8,8 @@
 #include <GeomAPI_PointsToBSpline.hxx>
 #include <GeomAdaptor_Curve.hxx>
 #include <Geom_BSplineCurve.hxx>
+#include <TColStd_Array1OfInteger.hxx>
+#include <TColStd_Array1OfReal.hxx>
 #include <Geom_Circle.hxx>
 #include <Geom_Line.hxx>
 #include <Geom_TrimmedCurve.hxx>
@@ -22,6 +24,7 @@
 #include <complex>
 
 #include "base/internal.hpp"
+#include "varieties/tube_fit.hpp"
 #include "verdict/solid_rays.hpp"
 
 namespace sweep::occt {
@@ -30,27 +33,117 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-/// The path of the body-frame point y(t) = exp(-xi t) x for t in [0, T] as a curve.
-Handle(Geom_Curve) trajectory(const ScrewJoint& j, const Eigen::Vector3d& x, double T, double tol) {
-  if (j.type == JointType::Prismatic) {
-    Handle(Geom_Line) l = new Geom_Line(to_pnt(x), gp_Dir(to_vec(-j.direction)));
-    return new Geom_TrimmedCurve(l, 0.0, T);
+/// The paths back through a motion of world points, in the frame of the body the motion moves:
+/// y(t) = M(t)^-1 x, t in [lo, hi]. Under one screw from `start` they are start^-1 exp(-xi q) x,
+/// q in [0, T]: segments, circles, or helices fitted within the tolerance. Otherwise
+/// y(t) = A(t) (x - c) + y_c(t) is affine in x: A and the path of c are fitted once as one
+/// B-spline of twelve values (a least-squares fit is linear in its samples, so the path of any x is
+/// the B-spline of the poles A_i (x - c) + b_i), to within the tolerance over a region about c that
+/// grows when a point lies beyond it.
+class BackwardPaths {
+ public:
+  BackwardPaths(const StageMotion& m, const Eigen::AlignedBox3d& body_box, double tol) : m_(m), tol_(tol) {
+    double radius = 0;
+    for (int k = 0; k < 8; ++k)
+      radius = std::max(radius, body_box.corner(Eigen::AlignedBox3d::CornerType(k)).norm());
+    screw_ = m.as_screw(radius);
+    if (screw_) {
+      moved_start_ = !screw_->start.isApprox(Eigen::Isometry3d::Identity(), 0.0);
+      if (moved_start_) from_start_ = to_trsf(screw_->start.inverse());
+      return;
+    }
+    // the region of the swept points: about the body's centre at the start, as far as it goes
+    const Eigen::Vector3d b = body_box.center();
+    c_ = m.transform(m.lo()) * b;
+    double reach = 0;
+    for (int k = 0; k <= 256; ++k) reach = std::max(reach, (m.transform(m.lo() + (m.hi() - m.lo()) * k / 256) * b - c_).norm());
+    fit_for(reach + 0.5 * body_box.diagonal().norm());
   }
-  Eigen::Vector3d foot = j.point + j.direction * j.direction.dot(x - j.point);
-  double r = (x - foot).norm();
-  if (std::abs(j.pitch) == 0) {
-    if (r < 1e-12) return nullptr;
-    gp_Ax2 ax(to_pnt(foot), gp_Dir(to_vec(-j.direction)), gp_Dir(to_vec((x - foot) / r)));
-    Handle(Geom_Circle) c = new Geom_Circle(ax, r);
-    return new Geom_TrimmedCurve(c, 0.0, T);
+
+  /// Where the path of x starts: M(lo)^-1 x.
+  Eigen::Vector3d start_point(const Eigen::Vector3d& x) const {
+    if (screw_ && !moved_start_) return x;
+    return m_.body_point(m_.lo(), x);
   }
-  const int n = std::max(16, int(std::ceil(T / (M_PI / 32))));
-  TColgp_Array1OfPnt pts(1, n + 1);
-  for (int k = 0; k <= n; ++k) pts.SetValue(k + 1, to_pnt(j.transform(-T * k / n) * x));
-  GeomAPI_PointsToBSpline fit(pts, 3, 8, GeomAbs_C2, tol);
-  Handle(Geom_Curve) c(fit.Curve().get());
-  return c;
-}
+
+  /// The path of x (null when x does not move: a point on a revolute joint's axis).
+  Handle(Geom_Curve) operator()(const Eigen::Vector3d& x) {
+    if (screw_) {
+      Handle(Geom_Curve) c = screw_path(x);
+      if (!c.IsNull() && moved_start_) c->Transform(from_start_);
+      return c;
+    }
+    // the fit's error at x is at most its error per unit of |x - c|_1 and per the path of c
+    const double bound = fit_.error * (1 + (x - c_).lpNorm<1>());
+    if (!(bound <= tol_)) fit_for((x - c_).norm() * 2);
+    const int np = int(fit_.poles.rows());
+    TColgp_Array1OfPnt poles(1, np);
+    const Eigen::Vector3d d = x - c_;
+    for (int i = 0; i < np; ++i) {
+      const Eigen::RowVectorXd& row = fit_.poles.row(i);
+      const Eigen::Vector3d y = row.segment<3>(0).transpose() * d(0) + row.segment<3>(3).transpose() * d(1) +
+                                row.segment<3>(6).transpose() * d(2) + row.segment<3>(9).transpose();
+      poles.SetValue(i + 1, to_pnt(y));
+    }
+    TColStd_Array1OfReal knots(1, int(fit_.knots.size()));
+    TColStd_Array1OfInteger mults(1, int(fit_.knots.size()));
+    knots_of(fit_, knots, mults);
+    return new Geom_BSplineCurve(poles, knots, mults, degree);
+  }
+
+ private:
+  static constexpr int degree = 7;
+
+  Handle(Geom_Curve) screw_path(const Eigen::Vector3d& x) const {
+    const ScrewJoint& j = screw_->joint;
+    const double T = j.hi;
+    if (j.type == JointType::Prismatic) {
+      Handle(Geom_Line) l = new Geom_Line(to_pnt(x), gp_Dir(to_vec(-j.direction)));
+      return new Geom_TrimmedCurve(l, 0.0, T);
+    }
+    Eigen::Vector3d foot = j.point + j.direction * j.direction.dot(x - j.point);
+    double r = (x - foot).norm();
+    if (std::abs(j.pitch) == 0) {
+      if (r < 1e-12) return nullptr;
+      gp_Ax2 ax(to_pnt(foot), gp_Dir(to_vec(-j.direction)), gp_Dir(to_vec((x - foot) / r)));
+      Handle(Geom_Circle) c = new Geom_Circle(ax, r);
+      return new Geom_TrimmedCurve(c, 0.0, T);
+    }
+    const int n = std::max(16, int(std::ceil(T / (M_PI / 32))));
+    TColgp_Array1OfPnt pts(1, n + 1);
+    for (int k = 0; k <= n; ++k) pts.SetValue(k + 1, to_pnt(j.transform(-T * k / n) * x));
+    GeomAPI_PointsToBSpline fit(pts, 3, 8, GeomAbs_C2, tol_);
+    Handle(Geom_Curve) c(fit.Curve().get());
+    return c;
+  }
+
+  /// Fits A(t) and the path of c, spans doubled until points within `reach` of c are within the
+  /// tolerance. @throws ComputeError when no fit of up to 1024 spans is.
+  void fit_for(double reach) {
+    const double lo = m_.lo(), L = m_.hi() - lo;
+    const auto row = [&](double u) {
+      const Eigen::Isometry3d B = m_.transform(std::min(lo + u, m_.hi())).inverse();
+      Eigen::RowVectorXd r(12);
+      for (int k = 0; k < 3; ++k) r.segment<3>(3 * k) = B.linear().col(k).transpose();
+      r.segment<3>(9) = (B * c_).transpose();
+      return r;
+    };
+    for (int spans = 4; spans <= 1024; spans *= 2) {
+      fit_ = fit_bspline(row, 12, L, degree, spans, 1);
+      if (fit_.error * (1 + std::sqrt(3.0) * reach) <= tol_) return;
+    }
+    throw ComputeError("the motion's inverse poses could not be fitted within " + std::to_string(tol_) +
+                       " for the paths of the membership test");
+  }
+
+  const StageMotion& m_;
+  double tol_;
+  std::optional<ScrewSegment> screw_;
+  bool moved_start_ = false;  ///< the screw's start is not the identity: its paths are carried back
+  gp_Trsf from_start_;        ///< by start^-1
+  Eigen::Vector3d c_ = Eigen::Vector3d::Zero();
+  Fit fit_;
+};
 
 }  // namespace
 
@@ -119,8 +212,8 @@ std::vector<double> circle_torus_angles(const gp_Circ& c, const gp_Torus& tor, b
 /// rays that decide whether y(0) is in the body (OCCT's solid classifier decides where a ray
 /// cannot).
 struct TrajectoryMembership::Impl {
-  Impl(const TopoDS_Shape& body, bool solid, const ScrewJoint& j, double T, double tol)
-      : solid_(solid), j_(j), T_(T), tol_(tol) {
+  Impl(const TopoDS_Shape& body, bool solid, const StageMotion& m, double tol)
+      : solid_(solid), paths_(m, box_of(body), tol), tol_(tol) {
     if (solid_) cls_.Load(body);
     inter_ = face_hits(body, tol);
   }
@@ -148,8 +241,10 @@ struct TrajectoryMembership::Impl {
     }
   };
 
-  bool inside_at_start(const Eigen::Vector3d& x) {
+  /// Whether the path of x starts inside the body: y(lo) = M(lo)^-1 x.
+  bool inside_at_start(const Eigen::Vector3d& world) {
     const auto t0 = Clock::now();
+    const Eigen::Vector3d x = paths_.start_point(world);
     const int by_ray = sweep::occt::ray_inside(inter_, x, tol_);
     if (by_ray >= 0) return classify_.record(t0, by_ray == 1);
     cls_.Perform(to_pnt(x), tol_);
@@ -158,10 +253,11 @@ struct TrajectoryMembership::Impl {
 
   /// Whether the trajectory circle c, over [0, T], meets the torus face classified by fc (see
   /// circle_torus_angles for *solved).
-  bool circle_meets_face(const gp_Circ& c, const gp_Torus& tor, BRepTopAdaptor_FClass2d& fc, bool* solved) const {
+  static bool circle_meets_face(const gp_Circ& c, double T, const gp_Torus& tor, BRepTopAdaptor_FClass2d& fc,
+                                bool* solved) {
     for (double w : circle_torus_angles(c, tor, solved)) {
-      if (w > T_ + 1e-12 && w < 2 * M_PI - 1e-12) continue;
-      if (w > T_) w = 0.0;
+      if (w > T + 1e-12 && w < 2 * M_PI - 1e-12) continue;
+      if (w > T) w = 0.0;
       double u, v;
       ElSLib::Parameters(tor, ElCLib::Value(w, c), u, v);
       const TopAbs_State st = fc.Perform(gp_Pnt2d(u, v));
@@ -172,18 +268,19 @@ struct TrajectoryMembership::Impl {
 
   bool meets_boundary(const Eigen::Vector3d& x) {
     const auto t0 = Clock::now();
-    Handle(Geom_Curve) c = trajectory(j_, x, T_, tol_);
+    Handle(Geom_Curve) c = paths_(x);
     if (c.IsNull()) return intersect_.record(t0, false);
     Handle(GeomAdaptor_Curve) curve = new GeomAdaptor_Curve(c);
     Bnd_Box box;
     BndLib_Add3dCurve::Add(*curve, 0.0, box);
     Handle(Geom_Circle) circle;
     if (auto tc = Handle(Geom_TrimmedCurve)::DownCast(c)) circle = Handle(Geom_Circle)::DownCast(tc->BasisCurve());
+    const double T = c->LastParameter();
     for (std::size_t k = 0; k < inter_.size(); ++k) {
       if (inter_[k].box.IsOut(box)) continue;
       if (circle && inter_[k].torus) {
         bool solved = false;
-        const bool hit = circle_meets_face(circle->Circ(), *inter_[k].torus, *inter_[k].fc, &solved);
+        const bool hit = circle_meets_face(circle->Circ(), T, *inter_[k].torus, *inter_[k].fc, &solved);
         if (solved) {
           if (!hit) continue;
           if (k > 0) std::rotate(inter_.begin(), inter_.begin() + k, inter_.begin() + k + 1);
@@ -200,16 +297,15 @@ struct TrajectoryMembership::Impl {
   }
 
   bool solid_;
-  ScrewJoint j_;
-  double T_, tol_;
+  BackwardPaths paths_;
+  double tol_;
   BRepClass3d_SolidClassifier cls_;
   std::vector<FaceHit> inter_;
   Stats classify_, intersect_;
 };
 
-TrajectoryMembership::TrajectoryMembership(const TopoDS_Shape& body, bool solid, const ScrewJoint& j, double T,
-                                           double tol)
-    : impl_(std::make_unique<Impl>(body, solid, j, T, tol)) {}
+TrajectoryMembership::TrajectoryMembership(const TopoDS_Shape& body, bool solid, const StageMotion& motion, double tol)
+    : impl_(std::make_unique<Impl>(body, solid, motion, tol)) {}
 TrajectoryMembership::~TrajectoryMembership() = default;
 bool TrajectoryMembership::operator()(const Eigen::Vector3d& x) { return (*impl_)(x); }
 int TrajectoryMembership::ray_inside(const Eigen::Vector3d& x) { return sweep::occt::ray_inside(impl_->inter_, x, impl_->tol_); }
