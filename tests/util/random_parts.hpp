@@ -1,0 +1,163 @@
+#pragma once
+// A seeded generator of one-joint sweeps of machined parts, each given to the sweep as a STEP file
+// (a `brep` entity), as a user's CAD part is: a plate with a through hole, a block with a boss, an
+// L-bracket, a shaft with a collar and a block with a spherical pocket, in a random pose, under a
+// revolute, prismatic or helical joint drawn as for the primitives (random_one_joint.hpp). Each part
+// is also built as orbit intervals (sweep/orbit.hpp: unions and differences of primitives), which
+// give the reference volume without a B-rep. Case i has family i % 5 and joint kind (i / 5) % 3.
+#include <BRepAlgoAPI_Cut.hxx>
+#include <BRepAlgoAPI_Fuse.hxx>
+#include <BRepBuilderAPI_Transform.hxx>
+#include <BRepPrimAPI_MakeBox.hxx>
+#include <BRepPrimAPI_MakeCylinder.hxx>
+#include <BRepPrimAPI_MakeSphere.hxx>
+#include <STEPControl_Writer.hxx>
+#include <TopoDS_Shape.hxx>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <string>
+
+#include "sweep/orbit.hpp"
+#include "sweep/spec.hpp"
+
+namespace sweep::testing {
+
+inline const char* const kPartFamilies[] = {"plate_hole", "boss", "l_bracket", "collar", "pocket"};
+inline constexpr int kPartFamilyCount = 5;
+inline const char* const kPartJoints[] = {"revolute", "prismatic", "helical"};
+
+/// A part, its orbit intervals and the joint that moves it.
+struct RandomPart {
+  std::string name;    ///< family, joint type and index
+  TopoDS_Shape shape;  ///< the part in its pose
+  OrbitSolidPtr orbit;  ///< the same solid as orbit intervals
+  std::string joint;   ///< the joint's JSON (degrees)
+  /// The spec's JSON, the part read from `file`.
+  std::string spec(const std::string& file) const {
+    return "{\"sweep\": 1, \"name\": \"" + name + "\", \"angles\": \"deg\", \"entity\": {\"kind\": \"brep\", \"file\": \"" +
+           file + "\"}, \"motion\": {\"kind\": \"axes\", \"joints\": [" + joint + "]}}";
+  }
+};
+
+namespace detail {
+
+/// The part in its own frame (OCCT shape and orbit solid) for family k, dimensions drawn by `in`.
+template <class In>
+void part_in_own_frame(int k, In& in, TopoDS_Shape& shape, OrbitSolidPtr& orbit) {
+  const auto box = [](Eigen::Vector3d lo, Eigen::Vector3d hi) {
+    return std::make_pair(BRepPrimAPI_MakeBox(gp_Pnt(lo.x(), lo.y(), lo.z()), gp_Pnt(hi.x(), hi.y(), hi.z())).Shape(),
+                          orbit_box(lo, hi));
+  };
+  const auto cylinder_z = [](Eigen::Vector3d base, double r, double h) {
+    return std::make_pair(
+        BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(base.x(), base.y(), base.z()), gp_Dir(0, 0, 1)), r, h).Shape(),
+        orbit_cylinder(base, Eigen::Vector3d::UnitZ(), r, h));
+  };
+  const double a = in(0.6, 1.6), b = in(0.5, 1.4), c = in(0.2, 0.8);
+  const auto block = box(Eigen::Vector3d::Zero(), Eigen::Vector3d(a, b, c));
+  if (k == 0) {  // a plate with a through hole
+    const double r = in(0.1, 0.45) * std::min(a, b) * 0.5;
+    const Eigen::Vector3d ctr(in(r + 0.05, a - r - 0.05), in(r + 0.05, b - r - 0.05), -0.1);
+    const auto hole = cylinder_z(ctr, r, c + 0.2);
+    shape = BRepAlgoAPI_Cut(block.first, hole.first).Shape();
+    orbit = orbit_difference(block.second, hole.second);
+  } else if (k == 1) {  // a block with a boss on its top face
+    const double r = in(0.15, 0.45) * std::min(a, b) * 0.5;
+    const Eigen::Vector3d ctr(in(r + 0.05, a - r - 0.05), in(r + 0.05, b - r - 0.05), c);
+    const auto boss = cylinder_z(ctr, r, in(0.2, 0.8));
+    shape = BRepAlgoAPI_Fuse(block.first, boss.first).Shape();
+    orbit = orbit_union({block.second, boss.second});
+  } else if (k == 2) {  // an L-bracket: a block without a corner strip
+    const auto notch = box(Eigen::Vector3d(in(0.25, 0.6) * a, -0.1, in(0.3, 0.7) * c), Eigen::Vector3d(a + 0.1, b + 0.1, c + 0.1));
+    shape = BRepAlgoAPI_Cut(block.first, notch.first).Shape();
+    orbit = orbit_difference(block.second, notch.second);
+  } else if (k == 3) {  // a shaft with a collar
+    const double r1 = in(0.1, 0.35), h1 = in(0.8, 2.0), r2 = r1 + in(0.1, 0.4), h2 = in(0.1, 0.4) * h1;
+    const auto shaft = cylinder_z(Eigen::Vector3d::Zero(), r1, h1);
+    const auto collar = cylinder_z(Eigen::Vector3d(0, 0, in(0.1, 0.6) * h1), r2, h2);
+    shape = BRepAlgoAPI_Fuse(shaft.first, collar.first).Shape();
+    orbit = orbit_union({shaft.second, collar.second});
+  } else {  // a block with a spherical pocket in its top face
+    const double r = in(0.3, 0.9) * std::min({a * 0.5, b * 0.5, c});
+    const Eigen::Vector3d ctr(in(r + 0.05, a - r - 0.05), in(r + 0.05, b - r - 0.05), c);
+    const TopoDS_Shape ball = BRepPrimAPI_MakeSphere(gp_Pnt(ctr.x(), ctr.y(), ctr.z()), r).Shape();
+    shape = BRepAlgoAPI_Cut(block.first, ball).Shape();
+    orbit = orbit_difference(block.second, orbit_sphere(ctr, r));
+  }
+}
+
+}  // namespace detail
+
+inline RandomPart random_part_case(std::uint64_t seed, int index) {
+  std::mt19937_64 rng(seed * 7000003ULL + std::uint64_t(index));
+  std::uniform_real_distribution<double> uni(0.0, 1.0);
+  auto in = [&](double lo, double hi) { return lo + (hi - lo) * uni(rng); };
+  auto num = [](double v) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%.6f", v);
+    return std::string(b);
+  };
+  auto unit = [&]() {
+    for (;;) {
+      const Eigen::Vector3d v(in(-1, 1), in(-1, 1), in(-1, 1));
+      if (v.norm() > 0.2 && v.norm() <= 1) return Eigen::Vector3d(v.normalized());
+    }
+  };
+  auto vec_json = [&](const Eigen::Vector3d& v) { return "[" + num(v.x()) + ", " + num(v.y()) + ", " + num(v.z()) + "]"; };
+  RandomPart p;
+  const int family = index % kPartFamilyCount;
+  TopoDS_Shape local;
+  OrbitSolidPtr local_orbit;
+  detail::part_in_own_frame(family, in, local, local_orbit);
+  // a random pose, the part's origin within the unit cube about the origin
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.linear() = Eigen::AngleAxisd(in(0, M_PI), unit()).toRotationMatrix();
+  pose.translation() = Eigen::Vector3d(in(-1, 0.5), in(-1, 0.5), in(-1, 0.5));
+  gp_Trsf trsf;
+  const Eigen::Matrix3d& R = pose.linear();
+  const Eigen::Vector3d& t = pose.translation();
+  trsf.SetValues(R(0, 0), R(0, 1), R(0, 2), t.x(), R(1, 0), R(1, 1), R(1, 2), t.y(), R(2, 0), R(2, 1), R(2, 2), t.z());
+  p.shape = BRepBuilderAPI_Transform(local, trsf, true).Shape();
+  p.orbit = orbit_placed(local_orbit, pose);
+  // the joint: as for the primitives
+  const double reach = uni(rng) < 0.4 ? 0.5 : (uni(rng) < 0.5 ? 1.5 : 3.0);
+  const Eigen::Vector3d point(in(-reach, reach), in(-reach, reach), in(-reach, reach));
+  const std::string direction = uni(rng) < 0.3 ? "[0, 0, 1]" : vec_json(unit());
+  const std::string type = kPartJoints[(index / kPartFamilyCount) % 3];
+  p.joint = "{\"type\": \"" + type + "\", \"point\": " + vec_json(point) + ", \"direction\": " + direction;
+  if (type == std::string("revolute")) {
+    p.joint += ", \"range\": [0, " + num(uni(rng) < 0.1 ? 720.0 : in(20, 340)) + "]}";
+  } else if (type == std::string("prismatic")) {
+    p.joint += ", \"range\": [0, " + num(in(0.3, 3)) + "]}";
+  } else {
+    const double turns = in(0.25, 3);
+    const double pitch = uni(rng) < 0.5 ? in(0.3, 1.5) : in(2, 5);
+    p.joint += ", \"pitch\": " + num(pitch) + ", \"range\": [0, " + num(360 * turns) + "]}";
+  }
+  p.name = std::string(kPartFamilies[family]) + "_" + type + "_" + std::to_string(index);
+  return p;
+}
+
+/// Writes the part as STEP; false when that fails.
+inline bool write_part_step(const RandomPart& p, const std::string& path) {
+  STEPControl_Writer w;
+  return w.Transfer(p.shape, STEPControl_AsIs) == IFSelect_RetDone && w.Write(path.c_str()) == IFSelect_RetDone;
+}
+
+/// The part's swept volume from its orbit intervals (never a B-rep); *err its error estimate.
+inline double part_reference_volume(const RandomPart& p, double rel_tol, double* err) {
+  // the joint as the parser reads it (a ball stands in for the part)
+  const Spec spec = parse_spec("{\"sweep\": 1, \"angles\": \"deg\", \"entity\": {\"kind\": \"sphere\", \"center\": [0, 0, 0], "
+                               "\"radius\": 1}, \"motion\": {\"kind\": \"axes\", \"joints\": [" + p.joint + "]}}",
+                               ".");
+  const Motion& m = spec.motion.motion;
+  const ScrewJoint& j = m.joints.at(0);
+  const double T = std::min(j.hi - j.lo, j.type == JointType::Revolute ? 2 * M_PI : 1e300);
+  const OrbitSolidPtr body = orbit_placed(p.orbit, j.transform(j.lo) * m.home);
+  return joint_sweep_volume(*body, j, T, rel_tol, err);
+}
+
+}  // namespace sweep::testing
