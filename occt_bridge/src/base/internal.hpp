@@ -246,8 +246,8 @@ TopoDS_Shape solid_from_boundary_faces(const std::vector<TopoDS_Face>& split, co
 /// Point membership in the sweep of `body` under a one-parameter motion M (M(t) body is the body at
 /// t): x is swept when its path back through the motion, y(t) = M(t)^-1 x for t in [lo, hi], meets
 /// the body's boundary, or (for a solid body) starts inside it. The path is exact when the motion
-/// is one screw (a segment, a circle, or a helix fitted within `tol`), and otherwise the image of x
-/// under the motion's inverse poses, fitted once within `tol` over the region the body sweeps.
+/// is one slide or turn (a segment, a circle), and otherwise (a helix too) the image of x under the
+/// motion's inverse poses, fitted once within `tol` over the region the body sweeps.
 /// Keeps OCCT state: one per thread. The motion must outlive it.
 class TrajectoryMembership {
  public:

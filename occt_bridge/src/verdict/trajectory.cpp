@@ -5,7 +5,6 @@
 #include <BndLib_Add3dCurve.hxx>
 #include <ElCLib.hxx>
 #include <ElSLib.hxx>
-#include <GeomAPI_PointsToBSpline.hxx>
 #include <GeomAdaptor_Curve.hxx>
 #include <Geom_BSplineCurve.hxx>
 #include <TColStd_Array1OfInteger.hxx>
@@ -34,8 +33,8 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 /// The paths back through a motion of world points, in the frame of the body the motion moves:
-/// y(t) = M(t)^-1 x, t in [lo, hi]. Under one screw from `start` they are start^-1 exp(-xi q) x,
-/// q in [0, T]: segments, circles, or helices fitted within the tolerance. Otherwise
+/// y(t) = M(t)^-1 x, t in [lo, hi]. Under a slide or a turn from `start` they are
+/// start^-1 exp(-xi q) x, q in [0, T]: segments and circles. Otherwise (helices too)
 /// y(t) = A(t) (x - c) + y_c(t) is affine in x: A and the path of c are fitted once as one
 /// B-spline of twelve values (a least-squares fit is linear in its samples, so the path of any x is
 /// the B-spline of the poles A_i (x - c) + b_i), to within the tolerance over a region about c that
@@ -47,6 +46,9 @@ class BackwardPaths {
     for (int k = 0; k < 8; ++k)
       radius = std::max(radius, body_box.corner(Eigen::AlignedBox3d::CornerType(k)).norm());
     screw_ = m.as_screw(radius);
+    // segments and circles in closed form; a helix is fitted once for all points like any other
+    // path (fitting each point's own helix took most of the time of a screw-swept part)
+    if (screw_ && screw_->joint.type != JointType::Prismatic && screw_->joint.pitch != 0) screw_.reset();
     if (screw_) {
       moved_start_ = !screw_->start.isApprox(Eigen::Isometry3d::Identity(), 0.0);
       if (moved_start_) from_start_ = to_trsf(screw_->start.inverse());
@@ -101,20 +103,12 @@ class BackwardPaths {
       Handle(Geom_Line) l = new Geom_Line(to_pnt(x), gp_Dir(to_vec(-j.direction)));
       return new Geom_TrimmedCurve(l, 0.0, T);
     }
-    Eigen::Vector3d foot = j.point + j.direction * j.direction.dot(x - j.point);
-    double r = (x - foot).norm();
-    if (std::abs(j.pitch) == 0) {
-      if (r < 1e-12) return nullptr;
-      gp_Ax2 ax(to_pnt(foot), gp_Dir(to_vec(-j.direction)), gp_Dir(to_vec((x - foot) / r)));
-      Handle(Geom_Circle) c = new Geom_Circle(ax, r);
-      return new Geom_TrimmedCurve(c, 0.0, T);
-    }
-    const int n = std::max(16, int(std::ceil(T / (M_PI / 32))));
-    TColgp_Array1OfPnt pts(1, n + 1);
-    for (int k = 0; k <= n; ++k) pts.SetValue(k + 1, to_pnt(j.transform(-T * k / n) * x));
-    GeomAPI_PointsToBSpline fit(pts, 3, 8, GeomAbs_C2, tol_);
-    Handle(Geom_Curve) c(fit.Curve().get());
-    return c;
+    const Eigen::Vector3d foot = j.point + j.direction * j.direction.dot(x - j.point);
+    const double r = (x - foot).norm();
+    if (r < 1e-12) return nullptr;
+    gp_Ax2 ax(to_pnt(foot), gp_Dir(to_vec(-j.direction)), gp_Dir(to_vec((x - foot) / r)));
+    Handle(Geom_Circle) c = new Geom_Circle(ax, r);
+    return new Geom_TrimmedCurve(c, 0.0, T);
   }
 
   /// Fits A(t) and the path of c, spans doubled until points within `reach` of c are within the
