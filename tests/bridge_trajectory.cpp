@@ -176,7 +176,7 @@ double box_distance(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, const 
 /// The trajectory test of a box under `m` against the box's exact distance along each point's path
 /// back through the motion, sampled densely: points whose sampled path comes well inside, or stays
 /// farther out than the sampling can hide, are compared. Returns {compared, inside}.
-std::pair<int, int> compare_box_sweep(const sweep::StageMotion& m, double speed) {
+std::pair<int, int> compare_box_sweep(const sweep::StageMotion& m, double speed, int n = 10000, int points = 400) {
   const Eigen::Vector3d lo(-0.5, -0.4, -1), hi(0.5, 0.4, 1);
   const TopoDS_Shape body = BRepPrimAPI_MakeBox(gp_Pnt(lo.x(), lo.y(), lo.z()), gp_Pnt(hi.x(), hi.y(), hi.z())).Shape();
   sweep::occt::TrajectoryMembership member(body, true, m, 1e-8);
@@ -187,9 +187,8 @@ std::pair<int, int> compare_box_sweep(const sweep::StageMotion& m, double speed)
                    Eigen::Vector3d(Eigen::AlignedBox3d(lo, hi).corner(Eigen::AlignedBox3d::CornerType(c))));
   std::mt19937_64 rng(17);
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  const int n = 10000;
   int compared = 0, inside = 0;
-  for (int it = 0; it < 400; ++it) {
+  for (int it = 0; it < points; ++it) {
     const Eigen::Vector3d x = reach.min() + (reach.sizes().array() * Eigen::Array3d(u(rng), u(rng), u(rng))).matrix();
     double closest = 1e300;
     for (int k = 0; k <= n; ++k) {
@@ -243,4 +242,18 @@ TEST_CASE("Trajectory membership: a screw that does not start at the body's fram
   const auto [compared, inside] = compare_box_sweep(motion, 4.0);
   CHECK(compared > 300);
   CHECK(inside > 40);
+}
+
+TEST_CASE("Paths of a helix of many turns: one fit does not hold them, each point's is fitted") {
+  sweep::ScrewJoint j;
+  j.type = sweep::JointType::Helical;
+  j.point = Eigen::Vector3d(1.2, 0.1, 0);
+  j.direction = Eigen::Vector3d(0.2, -0.1, 1).normalized();
+  j.pitch = 0.3;
+  j.lo = 0;
+  j.hi = 2 * M_PI * 14;
+  const sweep::ScrewStage motion(j);
+  const auto [compared, inside] = compare_box_sweep(motion, 4.0, 100000, 120);
+  CHECK(compared > 60);
+  CHECK(inside > 10);
 }

@@ -5,6 +5,7 @@
 #include <BndLib_Add3dCurve.hxx>
 #include <ElCLib.hxx>
 #include <ElSLib.hxx>
+#include <GeomAPI_PointsToBSpline.hxx>
 #include <GeomAdaptor_Curve.hxx>
 #include <Geom_BSplineCurve.hxx>
 #include <TColStd_Array1OfInteger.hxx>
@@ -34,8 +35,8 @@ using Clock = std::chrono::steady_clock;
 
 /// The paths back through a motion of world points, in the frame of the body the motion moves:
 /// y(t) = M(t)^-1 x, t in [lo, hi]. Under a slide or a turn from `start` they are
-/// start^-1 exp(-xi q) x, q in [0, T]: segments and circles. Otherwise (helices too)
-/// y(t) = A(t) (x - c) + y_c(t) is affine in x: A and the path of c are fitted once as one
+/// start^-1 exp(-xi q) x, q in [0, T]: segments and circles. Otherwise (helices too, unless their
+/// fit below fails: then each point's helix is fitted) y(t) = A(t) (x - c) + y_c(t) is affine in x: A and the path of c are fitted once as one
 /// B-spline of twelve values (a least-squares fit is linear in its samples, so the path of any x is
 /// the B-spline of the poles A_i (x - c) + b_i), to within the tolerance over a region about c that
 /// grows when a point lies beyond it.
@@ -46,38 +47,46 @@ class BackwardPaths {
     for (int k = 0; k < 8; ++k)
       radius = std::max(radius, body_box.corner(Eigen::AlignedBox3d::CornerType(k)).norm());
     screw_ = m.as_screw(radius);
-    // segments and circles in closed form; a helix is fitted once for all points like any other
-    // path (fitting each point's own helix took most of the time of a screw-swept part)
-    if (screw_ && screw_->joint.type != JointType::Prismatic && screw_->joint.pitch != 0) screw_.reset();
     if (screw_) {
       moved_start_ = !screw_->start.isApprox(Eigen::Isometry3d::Identity(), 0.0);
       if (moved_start_) from_start_ = to_trsf(screw_->start.inverse());
-      return;
+      // segments and circles in closed form; a helix is fitted once for all points like any other
+      // path (fitting each point's own helix took most of the time of a screw-swept part), or
+      // point by point where that fit does not reach the tolerance (many turns)
+      const bool helix = screw_->joint.type != JointType::Prismatic && screw_->joint.pitch != 0;
+      if (!helix) return;
     }
     // the region of the swept points: about the body's centre at the start, as far as it goes
     const Eigen::Vector3d b = body_box.center();
     c_ = m.transform(m.lo()) * b;
     double reach = 0;
     for (int k = 0; k <= 256; ++k) reach = std::max(reach, (m.transform(m.lo() + (m.hi() - m.lo()) * k / 256) * b - c_).norm());
-    fit_for(reach + 0.5 * body_box.diagonal().norm());
+    fitted_ = fit_for(reach + 0.5 * body_box.diagonal().norm());
+    if (!fitted_ && !screw_)
+      throw ComputeError("the motion's inverse poses could not be fitted within " + std::to_string(tol_) +
+                         " for the paths of the membership test");
   }
 
   /// Where the path of x starts: M(lo)^-1 x.
   Eigen::Vector3d start_point(const Eigen::Vector3d& x) const {
-    if (screw_ && !moved_start_) return x;
+    if (screw_ && !moved_start_) return x;  // (a screw's start is the body's frame)
     return m_.body_point(m_.lo(), x);
   }
 
   /// The path of x (null when x does not move: a point on a revolute joint's axis).
   Handle(Geom_Curve) operator()(const Eigen::Vector3d& x) {
-    if (screw_) {
+    // the fit's error at x is at most its error per unit of |x - c|_1 and per the path of c
+    if (fitted_ && !(fit_.error * (1 + (x - c_).lpNorm<1>()) <= tol_)) {
+      fitted_ = fit_for((x - c_).norm() * 2);
+      if (!fitted_ && !screw_)
+        throw ComputeError("the motion's inverse poses could not be fitted within " + std::to_string(tol_) +
+                           " for the paths of the membership test");
+    }
+    if (!fitted_) {
       Handle(Geom_Curve) c = screw_path(x);
       if (!c.IsNull() && moved_start_) c->Transform(from_start_);
       return c;
     }
-    // the fit's error at x is at most its error per unit of |x - c|_1 and per the path of c
-    const double bound = fit_.error * (1 + (x - c_).lpNorm<1>());
-    if (!(bound <= tol_)) fit_for((x - c_).norm() * 2);
     const int np = int(fit_.poles.rows());
     TColgp_Array1OfPnt poles(1, np);
     const Eigen::Vector3d d = x - c_;
@@ -105,15 +114,22 @@ class BackwardPaths {
     }
     const Eigen::Vector3d foot = j.point + j.direction * j.direction.dot(x - j.point);
     const double r = (x - foot).norm();
-    if (r < 1e-12) return nullptr;
-    gp_Ax2 ax(to_pnt(foot), gp_Dir(to_vec(-j.direction)), gp_Dir(to_vec((x - foot) / r)));
-    Handle(Geom_Circle) c = new Geom_Circle(ax, r);
-    return new Geom_TrimmedCurve(c, 0.0, T);
+    if (j.pitch == 0) {
+      if (r < 1e-12) return nullptr;
+      gp_Ax2 ax(to_pnt(foot), gp_Dir(to_vec(-j.direction)), gp_Dir(to_vec((x - foot) / r)));
+      Handle(Geom_Circle) c = new Geom_Circle(ax, r);
+      return new Geom_TrimmedCurve(c, 0.0, T);
+    }
+    const int n = std::max(16, int(std::ceil(T / (M_PI / 32))));
+    TColgp_Array1OfPnt pts(1, n + 1);
+    for (int k = 0; k <= n; ++k) pts.SetValue(k + 1, to_pnt(j.transform(-T * k / n) * x));
+    GeomAPI_PointsToBSpline fit(pts, 3, 8, GeomAbs_C2, tol_);
+    return Handle(Geom_Curve)(fit.Curve().get());
   }
 
   /// Fits A(t) and the path of c, spans doubled until points within `reach` of c are within the
-  /// tolerance. @throws ComputeError when no fit of up to 1024 spans is.
-  void fit_for(double reach) {
+  /// tolerance; false when no fit of up to 1024 spans (256 for a screw) is.
+  bool fit_for(double reach) {
     const double lo = m_.lo(), L = m_.hi() - lo;
     const auto row = [&](double u) {
       const Eigen::Isometry3d B = m_.transform(std::min(lo + u, m_.hi())).inverse();
@@ -122,17 +138,19 @@ class BackwardPaths {
       r.segment<3>(9) = (B * c_).transpose();
       return r;
     };
-    for (int spans = 4; spans <= 1024; spans *= 2) {
+    // (a screw's helices have a way out, point by point; a dense fit of 1024 spans takes seconds)
+    const int most = screw_ ? 256 : 1024;
+    for (int spans = 4; spans <= most; spans *= 2) {
       fit_ = fit_bspline(row, 12, L, degree, spans, 1);
-      if (fit_.error * (1 + std::sqrt(3.0) * reach) <= tol_) return;
+      if (fit_.error * (1 + std::sqrt(3.0) * reach) <= tol_) return true;
     }
-    throw ComputeError("the motion's inverse poses could not be fitted within " + std::to_string(tol_) +
-                       " for the paths of the membership test");
+    return false;
   }
 
   const StageMotion& m_;
   double tol_;
   std::optional<ScrewSegment> screw_;
+  bool fitted_ = false;  ///< paths come from fit_ (else from the screw, point by point)
   bool moved_start_ = false;  ///< the screw's start is not the identity: its paths are carried back
   gp_Trsf from_start_;        ///< by start^-1
   Eigen::Vector3d c_ = Eigen::Vector3d::Zero();
