@@ -10,9 +10,6 @@
 #include <fstream>
 #include <string>
 
-#include <Message.hxx>
-#include <Message_Messenger.hxx>
-
 #include "util/random_parts.hpp"
 
 int main(int argc, char** argv) {
@@ -29,7 +26,6 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "random_parts: COUNT must be >= 0 and REL_TOL in (0, 1)\n");
     return 2;
   }
-  Message::DefaultMessenger()->ChangePrinters().Clear();  // the STEP writer's statistics
   for (int i = 0; i < count; ++i) {
     const sweep::testing::RandomPart p = sweep::testing::random_part_case(seed, i);
     if (p.name.find(filter) == std::string::npos) continue;

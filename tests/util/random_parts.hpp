@@ -11,6 +11,8 @@
 #include <BRepPrimAPI_MakeBox.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
 #include <BRepPrimAPI_MakeSphere.hxx>
+#include <Message.hxx>
+#include <Message_Messenger.hxx>
 #include <STEPControl_Writer.hxx>
 #include <TopoDS_Shape.hxx>
 
@@ -141,10 +143,15 @@ inline RandomPart random_part_case(std::uint64_t seed, int index) {
   return p;
 }
 
-/// Writes the part as STEP; false when that fails.
+/// Writes the part as STEP, without the writer's statistics on the output; false when that fails.
 inline bool write_part_step(const RandomPart& p, const std::string& path) {
+  const Handle(Message_Messenger) messenger = Message::DefaultMessenger();
+  const Message_SequenceOfPrinters printers = messenger->Printers();
+  messenger->ChangePrinters().Clear();
   STEPControl_Writer w;
-  return w.Transfer(p.shape, STEPControl_AsIs) == IFSelect_RetDone && w.Write(path.c_str()) == IFSelect_RetDone;
+  const bool ok = w.Transfer(p.shape, STEPControl_AsIs) == IFSelect_RetDone && w.Write(path.c_str()) == IFSelect_RetDone;
+  messenger->ChangePrinters() = printers;
+  return ok;
 }
 
 /// The part's swept volume from its orbit intervals (never a B-rep); *err its error estimate.
