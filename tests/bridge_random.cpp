@@ -167,9 +167,9 @@ TEST_CASE("Random one-joint sweeps in CI: every joint and entity kind, no wrong 
 
 namespace {
 
-/// The row of the CI table named `name`.
-TableRow table_row(const std::string& name) {
-  const std::vector<TableRow> rows = read_table(std::string(SWEEP_SOURCE_DIR) + "/tests/data/random_one_joint.tsv");
+/// The row named `name` of a reference table in tests/data (the CI table of primitives unless told).
+TableRow table_row(const std::string& name, const std::string& table = "random_one_joint.tsv") {
+  const std::vector<TableRow> rows = read_table(std::string(SWEEP_SOURCE_DIR) + "/tests/data/" + table);
   const auto row = std::find_if(rows.begin(), rows.end(), [&](const TableRow& r) { return r.name == name; });
   REQUIRE(row != rows.end());
   return *row;
@@ -308,10 +308,8 @@ TEST_CASE("Random parts: no wrong solid ok on every part of the table", "[random
 TEST_CASE("Random parts: an L-bracket whose sweep boundary only healing makes valid goes to the cells") {
   // the boundary's kept pieces of this L-bracket turned 295 degrees about a skew axis overlap; OCCT's
   // healing made a valid solid of them 0.5 % too large, which the verdict caught at 2 of 5,120 points
-  const std::vector<TableRow> rows = read_table(std::string(SWEEP_SOURCE_DIR) + "/tests/data/random_parts.tsv");
-  const auto row = std::find_if(rows.begin(), rows.end(), [](const TableRow& r) { return r.name == "l_bracket_revolute_2"; });
-  REQUIRE(row != rows.end());
-  const testing::RandomCase c = part_case(*row);
+  const TableRow row = table_row("l_bracket_revolute_2", "random_parts.tsv");
+  const testing::RandomCase c = part_case(row);
   occt::RunOptions opt;
   opt.stop = occt::stop_after(120);
   std::vector<std::string> steps;
@@ -320,5 +318,5 @@ TEST_CASE("Random parts: an L-bracket whose sweep boundary only healing makes va
   CHECK(!step_mentioning(steps, "do not make a valid solid").empty());
   CHECK(!step_mentioning(steps, "built from cells").empty());
   // the cells' volume is right (their solid's geometric error is just over the tolerance)
-  CHECK(right_volume(r.report.volume_brep, row->volume, row->error));
+  CHECK(right_volume(r.report.volume_brep, row.volume, row.error));
 }

@@ -208,6 +208,19 @@ std::pair<int, int> compare_box_sweep(const sweep::StageMotion& m, double speed,
 
 sweep::Expr texpr(const std::string& s) { return sweep::Expr::parse(s, {"t"}); }
 
+/// A helical joint about the line through `point` along `direction`, over [lo, hi].
+sweep::ScrewJoint helical(const Eigen::Vector3d& point, const Eigen::Vector3d& direction, double pitch, double lo,
+                          double hi) {
+  sweep::ScrewJoint j;
+  j.type = sweep::JointType::Helical;
+  j.point = point;
+  j.direction = direction.normalized();
+  j.pitch = pitch;
+  j.lo = lo;
+  j.hi = hi;
+  return j;
+}
+
 }  // namespace
 
 TEST_CASE("Trajectory membership: a box rolled along a path that is no screw, against its exact distance") {
@@ -226,13 +239,7 @@ TEST_CASE("Trajectory membership: a box rolled along a path that is no screw, ag
 
 TEST_CASE("Trajectory membership: a screw that does not start at the body's frame") {
   // a helical joint after a home pose: the paths are the screw's from its start, carried back
-  sweep::ScrewJoint j;
-  j.type = sweep::JointType::Helical;
-  j.point = Eigen::Vector3d(1.5, 0.2, 0);
-  j.direction = Eigen::Vector3d(0.1, 0.3, 1).normalized();
-  j.pitch = 0.4;
-  j.lo = 0.5;
-  j.hi = 3.5;
+  const sweep::ScrewJoint j = helical(Eigen::Vector3d(1.5, 0.2, 0), Eigen::Vector3d(0.1, 0.3, 1), 0.4, 0.5, 3.5);
   Eigen::Isometry3d home = Eigen::Isometry3d::Identity();
   home.linear() = Eigen::AngleAxisd(0.6, Eigen::Vector3d(1, 1, 0).normalized()).toRotationMatrix();
   home.translation() = Eigen::Vector3d(0.3, -0.2, 0.4);
@@ -245,14 +252,7 @@ TEST_CASE("Trajectory membership: a screw that does not start at the body's fram
 }
 
 TEST_CASE("Paths of a helix of many turns: one fit does not hold them, each point's is fitted") {
-  sweep::ScrewJoint j;
-  j.type = sweep::JointType::Helical;
-  j.point = Eigen::Vector3d(1.2, 0.1, 0);
-  j.direction = Eigen::Vector3d(0.2, -0.1, 1).normalized();
-  j.pitch = 0.3;
-  j.lo = 0;
-  j.hi = 2 * M_PI * 14;
-  const sweep::ScrewStage motion(j);
+  const sweep::ScrewStage motion(helical(Eigen::Vector3d(1.2, 0.1, 0), Eigen::Vector3d(0.2, -0.1, 1), 0.3, 0, 2 * M_PI * 14));
   const auto [compared, inside] = compare_box_sweep(motion, 4.0, 100000, 120);
   CHECK(compared > 60);
   CHECK(inside > 10);

@@ -25,20 +25,47 @@ inline constexpr int kRandomKindCount = 6;
 inline int random_case_kind(int index) { return index % kRandomKindCount; }
 inline int random_case_joint(int index) { return (index / kRandomKindCount) % 3; }
 
+/// A number as the specs print it (six decimals).
+inline std::string fixed6(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.6f", v);
+  return b;
+}
+
+/// How far from the origin a joint's axis point is drawn: through the entity's region, beside it
+/// or away from it. `uni()` draws from the case's stream in [0, 1).
+template <class Uni>
+double random_axis_reach(Uni& uni) {
+  return uni() < 0.4 ? 0.5 : (uni() < 0.5 ? 1.5 : 3.0);
+}
+
+/// The end of a joint's JSON after its direction: its range, and a helical joint's pitch, as the
+/// generators draw them (revolute 20 to 340 degrees, one in ten 720; prismatic strokes 0.3 to 3;
+/// helical 0.25 to 3 turns of pitch 0.3 to 1.5, overlapping, or 2 to 5, apart). `in(a, b)` and
+/// `uni()` draw from the case's stream.
+template <class In, class Uni>
+std::string random_joint_range(const std::string& type, In& in, Uni& uni) {
+  if (type == "revolute") {
+    const double deg = uni() < 0.1 ? 720.0 : in(20, 340);
+    return ", \"range\": [0, " + fixed6(deg) + "]}";
+  }
+  if (type == "prismatic") return ", \"range\": [0, " + fixed6(in(0.3, 3)) + "]}";
+  const double turns = in(0.25, 3);
+  const double pitch = uni() < 0.5 ? in(0.3, 1.5) : in(2, 5);
+  return ", \"pitch\": " + fixed6(pitch) + ", \"range\": [0, " + fixed6(360 * turns) + "]}";
+}
+
 inline RandomCase random_one_joint_case(std::uint64_t seed, int index) {
   std::mt19937_64 rng(seed * 1000003ULL + std::uint64_t(index));
   std::uniform_real_distribution<double> uni(0.0, 1.0);
   auto in = [&](double a, double b) { return a + (b - a) * uni(rng); };
+  auto u = [&]() { return uni(rng); };
   auto vec = [&](double s) {
     char b[96];
     std::snprintf(b, sizeof b, "[%.6f, %.6f, %.6f]", in(-s, s), in(-s, s), in(-s, s));
     return std::string(b);
   };
-  auto num = [](double v) {
-    char b[32];
-    std::snprintf(b, sizeof b, "%.6f", v);
-    return std::string(b);
-  };
+  const auto num = fixed6;
   auto unit = [&]() {
     for (;;) {
       const double x = in(-1, 1), y = in(-1, 1), z = in(-1, 1), n = std::sqrt(x * x + y * y + z * z);
@@ -74,21 +101,12 @@ inline RandomCase random_one_joint_case(std::uint64_t seed, int index) {
              ", \"major\": " + num(minor + in(0.3, 1.2)) + ", \"minor\": " + num(minor) + "}";
   }
   // the axis: through the entity's region, beside it or away from it
-  const double reach = uni(rng) < 0.4 ? 0.5 : (uni(rng) < 0.5 ? 1.5 : 3.0);
+  const double reach = random_axis_reach(u);
   const std::string point = vec(reach);
   const std::string direction = uni(rng) < 0.3 ? "[0, 0, 1]" : unit();
   const std::string type = kRandomJoints[random_case_joint(index)];
-  std::string joint = "{\"type\": \"" + type + "\", \"point\": " + point + ", \"direction\": " + direction;
-  if (type == "revolute") {
-    const double deg = uni(rng) < 0.1 ? 720.0 : in(20, 340);
-    joint += ", \"range\": [0, " + num(deg) + "]}";
-  } else if (type == "prismatic") {
-    joint += ", \"range\": [0, " + num(in(0.3, 3)) + "]}";
-  } else {
-    const double turns = in(0.25, 3);
-    const double pitch = uni(rng) < 0.5 ? in(0.3, 1.5) : in(2, 5);  // overlapping or apart
-    joint += ", \"pitch\": " + num(pitch) + ", \"range\": [0, " + num(360 * turns) + "]}";
-  }
+  const std::string joint = "{\"type\": \"" + type + "\", \"point\": " + point + ", \"direction\": " + direction +
+                            random_joint_range(type, in, u);
   RandomCase c;
   c.name = kind + "_" + type + "_" + std::to_string(index);
   c.spec = "{\"sweep\": 1, \"name\": \"" + c.name + "\", \"angles\": \"deg\", \"entity\": " + entity +

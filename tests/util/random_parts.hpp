@@ -24,12 +24,12 @@
 
 #include "sweep/orbit.hpp"
 #include "sweep/spec.hpp"
+#include "util/random_one_joint.hpp"
 
 namespace sweep::testing {
 
 inline const char* const kPartFamilies[] = {"plate_hole", "boss", "l_bracket", "collar", "pocket"};
 inline constexpr int kPartFamilyCount = 5;
-inline const char* const kPartJoints[] = {"revolute", "prismatic", "helical"};
 
 /// A part, its orbit intervals and the joint that moves it.
 struct RandomPart {
@@ -97,11 +97,8 @@ inline RandomPart random_part_case(std::uint64_t seed, int index) {
   std::mt19937_64 rng(seed * 7000003ULL + std::uint64_t(index));
   std::uniform_real_distribution<double> uni(0.0, 1.0);
   auto in = [&](double lo, double hi) { return lo + (hi - lo) * uni(rng); };
-  auto num = [](double v) {
-    char b[32];
-    std::snprintf(b, sizeof b, "%.6f", v);
-    return std::string(b);
-  };
+  auto u = [&]() { return uni(rng); };
+  const auto num = fixed6;
   auto unit = [&]() {
     for (;;) {
       const Eigen::Vector3d v(in(-1, 1), in(-1, 1), in(-1, 1));
@@ -125,20 +122,12 @@ inline RandomPart random_part_case(std::uint64_t seed, int index) {
   p.shape = BRepBuilderAPI_Transform(local, trsf, true).Shape();
   p.orbit = orbit_placed(local_orbit, pose);
   // the joint: as for the primitives
-  const double reach = uni(rng) < 0.4 ? 0.5 : (uni(rng) < 0.5 ? 1.5 : 3.0);
+  const double reach = random_axis_reach(u);
   const Eigen::Vector3d point(in(-reach, reach), in(-reach, reach), in(-reach, reach));
   const std::string direction = uni(rng) < 0.3 ? "[0, 0, 1]" : vec_json(unit());
-  const std::string type = kPartJoints[(index / kPartFamilyCount) % 3];
-  p.joint = "{\"type\": \"" + type + "\", \"point\": " + vec_json(point) + ", \"direction\": " + direction;
-  if (type == std::string("revolute")) {
-    p.joint += ", \"range\": [0, " + num(uni(rng) < 0.1 ? 720.0 : in(20, 340)) + "]}";
-  } else if (type == std::string("prismatic")) {
-    p.joint += ", \"range\": [0, " + num(in(0.3, 3)) + "]}";
-  } else {
-    const double turns = in(0.25, 3);
-    const double pitch = uni(rng) < 0.5 ? in(0.3, 1.5) : in(2, 5);
-    p.joint += ", \"pitch\": " + num(pitch) + ", \"range\": [0, " + num(360 * turns) + "]}";
-  }
+  const std::string type = kRandomJoints[(index / kPartFamilyCount) % 3];
+  p.joint = "{\"type\": \"" + type + "\", \"point\": " + vec_json(point) + ", \"direction\": " + direction +
+            random_joint_range(type, in, u);
   p.name = std::string(kPartFamilies[family]) + "_" + type + "_" + std::to_string(index);
   return p;
 }

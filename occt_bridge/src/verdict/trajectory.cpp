@@ -61,10 +61,7 @@ class BackwardPaths {
     c_ = m.transform(m.lo()) * b;
     double reach = 0;
     for (int k = 0; k <= 256; ++k) reach = std::max(reach, (m.transform(m.lo() + (m.hi() - m.lo()) * k / 256) * b - c_).norm());
-    fitted_ = fit_for(reach + 0.5 * body_box.diagonal().norm());
-    if (!fitted_ && !screw_)
-      throw ComputeError("the motion's inverse poses could not be fitted within " + std::to_string(tol_) +
-                         " for the paths of the membership test");
+    fit_for(reach + 0.5 * body_box.diagonal().norm());
   }
 
   /// Where the path of x starts: M(lo)^-1 x.
@@ -76,12 +73,7 @@ class BackwardPaths {
   /// The path of x (null when x does not move: a point on a revolute joint's axis).
   Handle(Geom_Curve) operator()(const Eigen::Vector3d& x) {
     // the fit's error at x is at most its error per unit of |x - c|_1 and per the path of c
-    if (fitted_ && !(fit_.error * (1 + (x - c_).lpNorm<1>()) <= tol_)) {
-      fitted_ = fit_for((x - c_).norm() * 2);
-      if (!fitted_ && !screw_)
-        throw ComputeError("the motion's inverse poses could not be fitted within " + std::to_string(tol_) +
-                           " for the paths of the membership test");
-    }
+    if (fitted_ && !(fit_.error * (1 + (x - c_).lpNorm<1>()) <= tol_)) fit_for((x - c_).norm() * 2);
     if (!fitted_) {
       Handle(Geom_Curve) c = screw_path(x);
       if (!c.IsNull() && moved_start_) c->Transform(from_start_);
@@ -128,8 +120,9 @@ class BackwardPaths {
   }
 
   /// Fits A(t) and the path of c, spans doubled until points within `reach` of c are within the
-  /// tolerance; false when no fit of up to 1024 spans (256 for a screw) is.
-  bool fit_for(double reach) {
+  /// tolerance; fitted_ tells whether a fit of up to 1024 spans (256 for a screw) is. @throws
+  /// ComputeError when none is and the motion is no screw (whose paths have a way out).
+  void fit_for(double reach) {
     const double lo = m_.lo(), L = m_.hi() - lo;
     const auto row = [&](double u) {
       const Eigen::Isometry3d B = m_.transform(std::min(lo + u, m_.hi())).inverse();
@@ -142,9 +135,12 @@ class BackwardPaths {
     const int most = screw_ ? 256 : 1024;
     for (int spans = 4; spans <= most; spans *= 2) {
       fit_ = fit_bspline(row, 12, L, degree, spans, 1);
-      if (fit_.error * (1 + std::sqrt(3.0) * reach) <= tol_) return true;
+      fitted_ = fit_.error * (1 + std::sqrt(3.0) * reach) <= tol_;
+      if (fitted_) return;
     }
-    return false;
+    if (!screw_)
+      throw ComputeError("the motion's inverse poses could not be fitted within " + std::to_string(tol_) +
+                         " for the paths of the membership test");
   }
 
   const StageMotion& m_;
