@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "sweep/envelope.hpp"
+#include "sweep/error.hpp"
 #include "sweep/grazing_family.hpp"
 #include "sweep/settings.hpp"
 #include "sweep/variety.hpp"
@@ -65,6 +66,10 @@ std::vector<CandidatePatch> candidate_patches(const Entity& entity, const std::s
   std::vector<CandidatePatch> out;
   const double lo = motion->lo(), hi = motion->hi();
   const std::vector<PatchPtr>& faces = entity.faces();
+  for (const PatchPtr& f : faces)
+    if (f->trimmed)
+      throw ComputeError("the candidate patches of trimmed faces (" + f->what() +
+                         ") are not built yet: end copies and envelope sheets take whole parameter boxes");
   for (double t : {lo, hi})
     for (std::size_t k = 0; k < faces.size(); ++k) {
       poll();

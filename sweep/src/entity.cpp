@@ -77,6 +77,7 @@ PatchPtr patch_part(const PatchPtr& p, const std::vector<double>& lo, const std:
   auto part = std::make_shared<Patch>(p->dim(), lo, hi, [p](const double* s) { return p->eval(s); }, p->form(),
                                       p->what(), p->orientation());
   part->fixed = p->fixed;
+  part->trimmed = p->trimmed;
   return part;
 }
 

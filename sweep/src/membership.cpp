@@ -69,6 +69,9 @@ int swept_set_membership(const SignedDistance& sd, const Motion& motion, const V
   };
   std::priority_queue<Open> open;
   std::vector<double> c(n);
+  // a loose bound cannot tell a sub-box smaller than its slack from one that reaches the solid
+  const double slack = sd.slack();
+  bool uncertain = false;
   // 1: x is in, 0: the sub-box may hold it (pushed), -1: discarded
   auto visit = [&](SearchBox b) -> int {
     double move = 0.0, widest = -1.0;
@@ -79,15 +82,20 @@ int swept_set_membership(const SignedDistance& sd, const Motion& motion, const V
       move += m;
       if (m > widest) { widest = m; split = i; }
     }
-    const double d = sd(motion.transform(c).inverse() * x);
+    const double d = sd.below(motion.transform(c).inverse() * x, move);
     if (d <= 0.0) return 1;
     if (d > move || move < resolution) return -1;  // out, or within resolution of the boundary: out
+    if (move < slack) {
+      uncertain = true;
+      return -1;
+    }
     open.push({d - move, split, std::move(b)});
     return 0;
   };
   SearchBox root;
   for (const auto& j : motion.joints) { root.lo.push_back(j.lo); root.hi.push_back(j.hi); }
   if (visit(root) == 1) return 1;
+  if (uncertain) return -1;
   for (std::size_t iterations = 0; !open.empty(); ++iterations) {
     if (iterations >= budget) return -1;
     Open top = open.top();
@@ -97,6 +105,9 @@ int swept_set_membership(const SignedDistance& sd, const Motion& motion, const V
     top.box.hi[top.split] = mid;
     half.lo[top.split] = mid;
     if (visit(std::move(top.box)) == 1 || visit(std::move(half)) == 1) return 1;
+    // a sub-box the bound cannot decide: x is within its slack of the boundary, or in; the rest of
+    // the search could only tell the second, at the cost of the whole budget
+    if (uncertain) return -1;
   }
   return 0;
 }

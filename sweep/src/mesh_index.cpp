@@ -69,6 +69,24 @@ MeshIndex::MeshIndex(std::vector<Triangle> triangles) : tris_(std::move(triangle
   if (!tris_.empty()) build(0, int(tris_.size()), 0);
 }
 
+namespace {
+/// The nodes a traversal has still to visit: at most one more than the tree's depth (each visit
+/// replaces a node by its two children), and build() stops at depth 61.
+class NodeStack {
+ public:
+  void push(int node) {
+    SWEEP_ASSERT(size_ < int(sizeof(nodes_) / sizeof(nodes_[0])), "mesh index deeper than its stack");
+    nodes_[size_++] = node;
+  }
+  int pop() { return nodes_[--size_]; }
+  bool empty() const { return size_ == 0; }
+
+ private:
+  int nodes_[64];
+  int size_ = 0;
+};
+}  // namespace
+
 int MeshIndex::build(int first, int count, int depth) {
   Node node;
   for (int k = first; k < first + count; ++k) node.box.extend(box_of(tris_[order_[k]]));
@@ -97,14 +115,14 @@ bool MeshIndex::crossings(const Vector3d& p, const Vector3d& d, int* count) cons
   const Vector3d inv(1.0 / d.x(), 1.0 / d.y(), 1.0 / d.z());
   const double scale = std::max(box_.sizes().maxCoeff(), 1e-300);
   int n = 0;
-  std::vector<int> stack{0};
+  NodeStack stack;
+  if (!nodes_.empty()) stack.push(0);
   while (!stack.empty()) {
-    const Node& node = nodes_[stack.back()];
-    stack.pop_back();
+    const Node& node = nodes_[stack.pop()];
     if (!ray_meets_box(node.box, p, inv)) continue;
     if (node.left >= 0) {
-      stack.push_back(node.left);
-      stack.push_back(node.right);
+      stack.push(node.left);
+      stack.push(node.right);
       continue;
     }
     for (int k = node.first; k < node.first + node.count; ++k) {
@@ -151,21 +169,20 @@ bool MeshIndex::inside(const Vector3d& p) const {
 
 double MeshIndex::distance_below(const Vector3d& p, double limit) const {
   double best2 = limit * limit;
-  std::vector<int> stack;
-  if (!nodes_.empty()) stack.push_back(0);
+  NodeStack stack;
+  if (!nodes_.empty()) stack.push(0);
   while (!stack.empty()) {
-    const Node& node = nodes_[stack.back()];
-    stack.pop_back();
+    const Node& node = nodes_[stack.pop()];
     if (box_distance2(node.box, p) >= best2) continue;
     if (node.left >= 0) {
       // the nearer child last, so that it is visited first
       const double dl = box_distance2(nodes_[node.left].box, p), dr = box_distance2(nodes_[node.right].box, p);
       if (dl < dr) {
-        stack.push_back(node.right);
-        stack.push_back(node.left);
+        stack.push(node.right);
+        stack.push(node.left);
       } else {
-        stack.push_back(node.left);
-        stack.push_back(node.right);
+        stack.push(node.left);
+        stack.push(node.right);
       }
       continue;
     }

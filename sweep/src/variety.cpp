@@ -29,6 +29,7 @@ PatchPtr moved_patch(const PatchPtr& patch, std::shared_ptr<const StageMotion> m
   auto out = std::make_shared<Patch>(patch->dim(), lo, hi, std::move(map), form, what, patch->orientation());
   out->fixed = patch->fixed;
   out->fixed.push_back({"t", t});
+  out->trimmed = patch->trimmed;
   return out;
 }
 

@@ -38,15 +38,25 @@ double extent(const TopoDS_Shape& s);
 /// ends and middles of the joint ranges (a point entity has no extent of its own).
 double model_size(const TopoDS_Shape& raw, const Motion& motion);
 
-/// The entity of a run, built once from its spec: the core's entity (null for B-rep files), and
-/// its signed distance, parametric map and orbit solid (each null when it has none).
+/// The entity of a run, built once from its spec (the one place that tells the core's kinds from
+/// the bridge's): the core's entity, or the bridge's for a B-rep file (read once), and its signed
+/// distance, parametric map and orbit solid (each null when it has none).
 struct RunEntity {
   explicit RunEntity(const EntitySpec& spec);
   const EntitySpec& spec;
+  /// The shape of an entity given by a file, placement applied; null for the other kinds.
+  TopoDS_Shape file_shape;
   EntityPtr core;
+  /// A distance bound that vanishes on the boundary only (Entity::tight_distance), for the stages'
+  /// searches; null for entities without one.
   std::shared_ptr<const SignedDistance> sd;
   std::shared_ptr<const ParametricEntity> pe;
   OrbitSolidPtr orbit;
+  /// The distance bound for the verdict's searches: `sd`, or a looser bound (a B-rep solid's,
+  /// built at the first call); null when the entity has none.
+  std::shared_ptr<const SignedDistance> search_bound() const;
+  /// The entity's shape for its extent: the file's shape, or sizing_shape() of the spec.
+  TopoDS_Shape sizing_shape(double* fit_error) const;
 };
 
 /// The entity as the stages of a chain take it: the run's entity, its shape before the motion's

@@ -351,6 +351,8 @@ void general_solid_sweep(const Spec& spec, const StageMotion& m, const Sizing& s
 /// (no faces are made of them yet); whether they were listed.
 bool list_general_candidates(const Spec& spec, const Sizing& sizing, const RunOptions& opt, RunRecord& record) {
   if (!opt.varieties || !sizing.entity.core || spec.entity.dimension() != 3) return false;
+  for (const PatchPtr& f : sizing.entity.core->faces())
+    if (f->trimmed) return false;  // (their candidate patches are not built yet)
   const auto t0 = Clock::now();
   for (const CandidatePatch& c : candidate_patches(*sizing.entity.core, spec.motion.stage, [] { check_stop(); })) {
     Variety v = candidate_variety(c);
@@ -376,7 +378,7 @@ RunResult run_stage_motion_sweep(const Spec& spec, const RunOptions& opt) {
   try {
     OCC_CATCH_SIGNALS
     Sizing sizing{RunEntity(spec.entity), {}, 0.0};
-    sizing.shape = sizing_shape(spec.entity, &sizing.fit_err, sizing.entity.core.get());
+    sizing.shape = sizing.entity.sizing_shape(&sizing.fit_err);
     record.add_seconds("entity", since(t_start));
     const auto* km = dynamic_cast<const KeyframeMotion*>(&m);
     auto segments = km ? km->screw_segments() : std::nullopt;

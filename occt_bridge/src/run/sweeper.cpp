@@ -17,6 +17,7 @@
 
 #include "base/internal.hpp"
 #include "base/stop.hpp"
+#include "entity/brep_entity.hpp"
 #include "sweep/error.hpp"
 #include "sweep/membership.hpp"
 #include "sweep/swept_box.hpp"
@@ -88,12 +89,30 @@ nlohmann::json Variety::to_json() const {
   return j;
 }
 
+namespace {
+TopoDS_Shape file_shape_of(const EntitySpec& s) {
+  return s.kind == EntityKind::Brep ? entity_shape(s, 0.0, nullptr) : TopoDS_Shape();
+}
+}  // namespace
+
 RunEntity::RunEntity(const EntitySpec& s)
-    : spec(s), core(make_entity(s)), pe(ParametricEntity::make(s)) {
+    : spec(s),
+      file_shape(file_shape_of(s)),
+      core(file_shape.IsNull() ? make_entity(s) : brep_entity(file_shape)),
+      pe(ParametricEntity::make(s)) {
   if (core) {
-    sd = core->distance_bound();
+    if (core->tight_distance()) sd = core->distance_bound();
     orbit = core->orbit_solid();
   }
+}
+
+std::shared_ptr<const SignedDistance> RunEntity::search_bound() const {
+  if (sd || !core || !core->has_distance_bound()) return sd;
+  return core->distance_bound();
+}
+
+TopoDS_Shape RunEntity::sizing_shape(double* fit_error) const {
+  return file_shape.IsNull() ? occt::sizing_shape(spec, fit_error, core.get()) : file_shape;
 }
 
 RunTolerance run_tolerance(double spec_tolerance, double size, const Settings& settings) {
@@ -155,7 +174,7 @@ RunResult run_sweep(const Spec& spec, const RunOptions& opt) {
     const RunEntity entity(spec.entity);
     // Parametric curves and surfaces are fitted once the tolerance is known; their extent comes
     // from a sampled stand-in (a polyline or a point cloud is enough for a bounding box).
-    const TopoDS_Shape sizing = sizing_shape(spec.entity, &fit_err, entity.core.get());
+    const TopoDS_Shape sizing = entity.sizing_shape(&fit_err);
     const double size = model_size(sizing, motion);
     const auto [tol, fit_tol] = run_tolerance(spec.tolerance, size, opt.settings);
     rep.tol_requested = tol;

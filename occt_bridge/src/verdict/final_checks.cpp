@@ -56,8 +56,10 @@ IndependentMembership independent_membership(const RunEntity& run_entity, const 
             },
             "trajectories against the surface, the search over joint and surface parameters where they miss it", {}};
   }
-  if (sd) {
-    return {[sd, clipped, size, budget]() -> MemberTest {
+  if (const std::shared_ptr<const SignedDistance> bound = run_entity.search_bound()) {
+    // (a B-rep solid's bound is loose within its triangulation's deviation: points that near the
+    // swept set's boundary are left undecided)
+    return {[sd = bound, clipped, size, budget]() -> MemberTest {
               return [sd, clipped, size, budget](const Eigen::Vector3d& x) {
                 return swept_set_membership(*sd, clipped, x, Settings::resolution * size, budget);
               };
@@ -256,6 +258,9 @@ void monte_carlo_check(const RunEntity& run_entity, const Motion& clipped, const
                                        Settings::resolution * size);
     mc = monte_carlo_volume([&](const Eigen::Vector3d& x) { return by_trajectory(x); }, box,
                             std::min<std::size_t>(settings.mc_samples, 20000), settings.seed);
+  } else if (const std::shared_ptr<const SignedDistance> bound = n > 1 && !pe ? run_entity.search_bound() : nullptr) {
+    mc = monte_carlo_volume([&](const Eigen::Vector3d& x) { return in_swept_set(*bound, m, x, Settings::resolution * size); },
+                            box, chain_samples, settings.seed);
   } else if (pe) {
     // Here the independent membership is a search over the joint and entity parameters, far
     // slower than classifying a point against the solid: each sample is classified against the
@@ -269,8 +274,7 @@ void monte_carlo_check(const RunEntity& run_entity, const Motion& clipped, const
                             box, chain_samples, settings.seed, in_solid);
     rep.mc_compared = true;
   } else {
-    throw ComputeError("--verify needs a primitive solid, a point, a curve or a surface entity for motions of "
-                       "several joints");
+    throw ComputeError("--verify needs a solid, a point, a curve or a surface entity for motions of several joints");
   }
   rep.has_mc = true;
   rep.volume_mc = mc.volume;

@@ -28,7 +28,8 @@ struct CandidatePatch {
 };
 
 /// Every candidate patch of `entity` under `motion`, limit varieties first, then boundary and
-/// interior ones. `check` is called between patches (a stop request may throw from it).
+/// interior ones. `check` is called between patches (a stop request may throw from it). Throws
+/// ComputeError for an entity with trimmed faces (B-rep solids).
 std::vector<CandidatePatch> candidate_patches(const Entity& entity, const std::shared_ptr<const StageMotion>& motion,
                                               const std::function<void()>& check = {});
 

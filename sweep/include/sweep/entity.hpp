@@ -3,7 +3,8 @@
 /// The moving shape as the engine sees it: a box that holds it, an inside test, a signed-distance
 /// bound, and its boundary as patches with exact first derivatives. One implementation per entity
 /// kind; make_entity() is the one place that switches on the kind. B-rep and mesh entities are
-/// the bridge's (they need a geometry kernel); make_entity() gives none for them.
+/// the bridge's (they need a geometry kernel); make_entity() gives none for them. Their faces are
+/// trimmed patches (Patch::trimmed).
 #include <Eigen/Geometry>
 #include <functional>
 #include <memory>
@@ -71,6 +72,9 @@ class Patch {
   /// Parameters it fixes and their values (a variety's limit joint value, an edge's face
   /// parameter); empty for an entity's own faces.
   std::vector<std::pair<std::string, double>> fixed;
+  /// True when only part of the domain belongs to the shape: the face of a B-rep solid, whose
+  /// boundary curves cut its surface, is its surface over the face's parameter box.
+  bool trimmed = false;
 
  private:
   int dim_;
@@ -116,6 +120,10 @@ class Entity {
   /// is not called).
   virtual bool has_distance_bound() const = 0;
   virtual double distance(const Eigen::Vector3d& p) const = 0;
+  /// True when the distance bound vanishes on the boundary only (the primitives' exact distances),
+  /// so that a search with it decides points however near the boundary. A B-rep's bound, taken
+  /// from a triangulation of its faces, vanishes within the triangulation's measured deviation.
+  virtual bool tight_distance() const { return true; }
   /// The same bound as a function object of its own (for the membership tests), or null.
   virtual std::unique_ptr<SignedDistance> distance_bound() const = 0;
   /// The solid as orbit.hpp's exact orbit intersections take it (primitives), or null.

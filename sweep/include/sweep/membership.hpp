@@ -16,11 +16,23 @@
 
 namespace sweep {
 
-/// A solid given by a signed distance function (negative inside) that is 1-Lipschitz.
+/// A solid given by a signed distance function (negative inside) that is 1-Lipschitz, or by a
+/// bound on one: |d(p)| at most the distance from p to the boundary, a negative value only inside.
 class SignedDistance {
  public:
   virtual ~SignedDistance() = default;
   virtual double operator()(const Eigen::Vector3d& p) const = 0;
+  /// 0 for a bound whose sign is exact everywhere. Otherwise the distance from the boundary
+  /// within which the bound may give a tiny positive value for a point inside: a search cannot
+  /// tell points that near the boundary from points out of the solid.
+  virtual double slack() const { return 0; }
+  /// A cheaper bound for a search that only asks whether it exceeds `limit`: negative exactly where
+  /// operator() is (a bound there too), equal to operator() where that is in [0, limit), above
+  /// `limit` elsewhere (a bound that looks for the nearest of many features stops sooner).
+  virtual double below(const Eigen::Vector3d& p, double limit) const {
+    (void)limit;
+    return (*this)(p);
+  }
 };
 
 /// Signed distance of a primitive solid entity (sphere, box, cylinder, cone, torus) with its
@@ -33,7 +45,9 @@ bool in_swept_set(const SignedDistance& sd, const Motion& motion, const Eigen::V
                   double resolution);
 
 /// The same search with at most `budget` sub-boxes split: 1 when x is in the swept set, 0 when it
-/// is out (or within `resolution` of the boundary), -1 when the budget ran out first.
+/// is out (or within `resolution` of the boundary), -1 when the budget ran out first or when the
+/// search met a sub-box whose move is below sd.slack() and that the bound does not exclude (x may
+/// then be out within the slack of the boundary, or in).
 int swept_set_membership(const SignedDistance& sd, const Motion& motion, const Eigen::Vector3d& x,
                          double resolution, std::size_t budget);
 

@@ -31,6 +31,10 @@ struct Settings {
   /// error when that is larger.
   static constexpr double sewing_gap = 1e-7;
 
+  /// Linear deflection of the triangulation behind a B-rep solid's distance bound (x the entity's
+  /// size; the bound's slack is measured on it).
+  static constexpr double brep_distance_deflection = 1e-4;
+
   // --- building a stage's solid from its sweep boundary
   /// How far off a piece of the candidate boundary its two sides are tested (x size), and again at
   /// twice that; a piece is kept when exactly one side is in the swept set.
