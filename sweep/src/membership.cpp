@@ -44,6 +44,27 @@ bool in_swept_set(const SignedDistance& sd, const Motion& motion, const Vector3d
   return swept_set_membership(sd, motion, x, resolution, 500000) == 1;
 }
 
+namespace {
+
+/// M(q)^-1 x for a chain M(q) = J_0(q_0) ... J_{n-1}(q_{n-1}) home: each joint's inverse applied to
+/// the point (a rotation by -q about its axis by Rodrigues' formula, less its slide), outermost
+/// first; no matrix products.
+Vector3d back_through(const Motion& motion, const Eigen::Isometry3d& home_inverse, const double* q, Vector3d y) {
+  for (std::size_t i = 0; i < motion.joints.size(); ++i) {
+    const ScrewJoint& j = motion.joints[i];
+    if (j.type == JointType::Prismatic) {
+      y -= j.direction * q[i];
+      continue;
+    }
+    const Vector3d v = y - j.point - j.direction * (j.pitch * q[i]);
+    const double c = std::cos(q[i]), sn = std::sin(q[i]);
+    y = j.point + v * c - j.direction.cross(v) * sn + j.direction * (j.direction.dot(v) * (1 - c));
+  }
+  return home_inverse * y;
+}
+
+}  // namespace
+
 int swept_set_membership(const SignedDistance& sd, const Motion& motion, const Vector3d& x, double resolution,
                          std::size_t budget) {
   const std::size_t n = motion.dof();
@@ -59,12 +80,24 @@ int swept_set_membership(const SignedDistance& sd, const Motion& motion, const V
     const auto& j = motion.joints[i];
     speed[i] = j.is_rotation() ? lever + std::abs(j.pitch) + j.point.norm() : 1.0;
   }
+  const Eigen::Isometry3d home_inverse = motion.home.inverse();
+  // The sub-boxes, 2n values each (lo then hi) in one pool; a box's slot is reused once it is split.
+  std::vector<double> pool;
+  std::vector<std::size_t> free_slots;
+  auto new_slot = [&]() -> std::size_t {
+    if (!free_slots.empty()) {
+      const std::size_t k = free_slots.back();
+      free_slots.pop_back();
+      return k;
+    }
+    pool.resize(pool.size() + 2 * n);
+    return pool.size() / (2 * n) - 1;
+  };
   // Best first: the sub-box whose lower bound of the distance (d at the centre minus the move) is
   // smallest is split next, so a point inside is found along the way to the distance's minimum.
   struct Open {
     double bound;
-    std::size_t split;
-    SearchBox box;
+    std::size_t split, slot;
     bool operator<(const Open& o) const { return bound > o.bound; }
   };
   std::priority_queue<Open> open;
@@ -72,39 +105,54 @@ int swept_set_membership(const SignedDistance& sd, const Motion& motion, const V
   // a loose bound cannot tell a sub-box smaller than its slack from one that reaches the solid
   const double slack = sd.slack();
   bool uncertain = false;
-  // 1: x is in, 0: the sub-box may hold it (pushed), -1: discarded
-  auto visit = [&](SearchBox b) -> int {
+  // 1: x is in, 0: the sub-box may hold it (pushed), -1: discarded (its slot freed)
+  auto visit = [&](std::size_t slot) -> int {
+    const double* lo = &pool[2 * n * slot];
+    const double* hi = lo + n;
     double move = 0.0, widest = -1.0;
     std::size_t split = 0;
     for (std::size_t i = 0; i < n; ++i) {
-      c[i] = 0.5 * (b.lo[i] + b.hi[i]);
-      const double m = speed[i] * 0.5 * (b.hi[i] - b.lo[i]);
+      c[i] = 0.5 * (lo[i] + hi[i]);
+      const double m = speed[i] * 0.5 * (hi[i] - lo[i]);
       move += m;
       if (m > widest) { widest = m; split = i; }
     }
-    const double d = sd.below(motion.transform(c).inverse() * x, move);
+    const double d = sd.below(back_through(motion, home_inverse, c.data(), x), move);
     if (d <= 0.0) return 1;
-    if (d > move || move < resolution) return -1;  // out, or within resolution of the boundary: out
-    if (move < slack) {
+    int kept = 0;
+    if (d > move || move < resolution) {
+      kept = -1;  // out, or within resolution of the boundary: out
+    } else if (move < slack) {
       uncertain = true;
+      kept = -1;
+    }
+    if (kept < 0) {
+      free_slots.push_back(slot);
       return -1;
     }
-    open.push({d - move, split, std::move(b)});
+    open.push({d - move, split, slot});
     return 0;
   };
-  SearchBox root;
-  for (const auto& j : motion.joints) { root.lo.push_back(j.lo); root.hi.push_back(j.hi); }
+  const std::size_t root = new_slot();
+  for (std::size_t i = 0; i < n; ++i) {
+    pool[2 * n * root + i] = motion.joints[i].lo;
+    pool[2 * n * root + n + i] = motion.joints[i].hi;
+  }
   if (visit(root) == 1) return 1;
   if (uncertain) return -1;
   for (std::size_t iterations = 0; !open.empty(); ++iterations) {
     if (iterations >= budget) return -1;
-    Open top = open.top();
+    const Open top = open.top();
     open.pop();
-    SearchBox half = top.box;
-    const double mid = 0.5 * (top.box.lo[top.split] + top.box.hi[top.split]);
-    top.box.hi[top.split] = mid;
-    half.lo[top.split] = mid;
-    if (visit(std::move(top.box)) == 1 || visit(std::move(half)) == 1) return 1;
+    // the box's lower half keeps its slot, the upper half takes a new one
+    const std::size_t half = new_slot();
+    double* box = &pool[2 * n * top.slot];
+    double* upper = &pool[2 * n * half];
+    std::copy(box, box + 2 * n, upper);
+    const double mid = 0.5 * (box[top.split] + box[n + top.split]);
+    box[n + top.split] = mid;
+    upper[top.split] = mid;
+    if (visit(top.slot) == 1 || visit(half) == 1) return 1;
     // a sub-box the bound cannot decide: x is within its slack of the boundary, or in; the rest of
     // the search could only tell the second, at the cost of the whole budget
     if (uncertain) return -1;

@@ -193,9 +193,10 @@ class BrepDistance : public SignedDistance {
   }
   double slack() const override { return 2 * slack_; }
   double below(const Eigen::Vector3d& p, double limit) const override {
-    if (mesh_.distance_below(p, 2 * slack_) < 2 * slack_) return std::numeric_limits<double>::min();
+    const double d = mesh_.distance_below(p, std::max(limit, 0.0) + 2 * slack_);
+    if (d < 2 * slack_) return std::numeric_limits<double>::min();
     if (mesh_.inside(p)) return -slack_;  // (the faces are at least that far)
-    return mesh_.distance_below(p, limit + 2 * slack_) - slack_;
+    return d - slack_;
   }
   /// Exact: by the triangulation away from the faces, by OCCT's classifier near them.
   bool inside(const Eigen::Vector3d& p) const {
