@@ -202,3 +202,64 @@ TEST_CASE("Joint-box membership: a loose distance bound is never wrong, and unde
   CAPTURE(loose.calls);
   CHECK(loose.calls < 300 * 10000);  // (17,000 each when the search runs to its budget)
 }
+
+TEST_CASE("Joint-box membership: a box under a helical, a revolute and a prismatic joint against a dense grid",
+          "[stage_membership]") {
+  // Each sub-box's move bound comes from the point's distance to each axis at the box's centre;
+  // a bound too small would call a swept point out. The grid's values of the box's distance decide
+  // the points it can: inside where one is negative, outside where all exceed what the grid's
+  // spacing can hide.
+  EntitySpec box;
+  box.kind = EntityKind::Box;
+  box.min = Eigen::Vector3d(0.2, -0.3, 0.1);
+  box.max = Eigen::Vector3d(0.9, 0.4, 0.5);
+  const auto sd = make_signed_distance(box);
+  Motion m;
+  ScrewJoint h;
+  h.type = JointType::Helical;
+  h.point = Eigen::Vector3d(0.1, 0.2, -0.3);
+  h.direction = Eigen::Vector3d(0.3, -0.2, 1).normalized();
+  h.pitch = 0.15;
+  h.hi = 2.0;
+  ScrewJoint r;
+  r.point = Eigen::Vector3d(1.2, 0.3, 0.2);
+  r.direction = Eigen::Vector3d(1, 0.4, -0.2).normalized();
+  r.lo = -0.6;
+  r.hi = 0.5;
+  ScrewJoint p;
+  p.type = JointType::Prismatic;
+  p.direction = Eigen::Vector3d(0.2, 1, 0.3).normalized();
+  p.hi = 0.7;
+  m.joints = {h, r, p};
+  const int N = 40;
+  // the grid hides at most half a spacing of each joint times a speed bound over the region
+  double hidden = 0;
+  for (const ScrewJoint& j : m.joints) hidden += 0.5 * (j.hi - j.lo) / N * (j.is_rotation() ? 8.0 + j.pitch : 1.0);
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int inside = 0, outside = 0, decided = 0;
+  for (int k = 0; k < 200; ++k) {
+    const Eigen::Vector3d x(0.5 + 1.3 * u(rng), 0.3 + 1.3 * u(rng), 0.4 + 1.0 * u(rng));
+    double least = 1e300;
+    std::vector<double> q(3);
+    for (int a = 0; a <= N; ++a)
+      for (int b = 0; b <= N; ++b)
+        for (int c = 0; c <= N; ++c) {
+          q = {h.lo + (h.hi - h.lo) * a / N, r.lo + (r.hi - r.lo) * b / N, p.lo + (p.hi - p.lo) * c / N};
+          least = std::min(least, (*sd)(m.transform(q).inverse() * x));
+        }
+    const int got = swept_set_membership(*sd, m, x, 1e-9, 20000);
+    INFO("x = " << x.transpose() << ", least distance on the grid " << least);
+    decided += got >= 0;
+    if (least < -1e-9) {
+      ++inside;
+      CHECK(got != 0);
+    } else if (least > hidden) {
+      ++outside;
+      CHECK(got != 1);
+    }
+  }
+  CHECK(inside > 20);
+  CHECK(outside > 20);
+  CHECK(decided > 190);
+}

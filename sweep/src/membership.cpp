@@ -46,21 +46,32 @@ bool in_swept_set(const SignedDistance& sd, const Motion& motion, const Vector3d
 
 namespace {
 
-/// M(q)^-1 x for a chain M(q) = J_0(q_0) ... J_{n-1}(q_{n-1}) home: each joint's inverse applied to
-/// the point (a rotation by -q about its axis by Rodrigues' formula, less its slide), outermost
-/// first; no matrix products.
-Vector3d back_through(const Motion& motion, const Eigen::Isometry3d& home_inverse, const double* q, Vector3d y) {
+/// y(c) = M(c)^-1 x for a chain M(q) = J_0(q_0) ... J_{n-1}(q_{n-1}) home, and how far y(q) can be
+/// from it over the box of half-widths w about c. The inverses K_i = J_i^-1 apply to x outermost
+/// first; turning q_i moves the point z_i that K_i takes (x after K_0 ... K_{i-1}) along a circle
+/// or helix about joint i's axis at speed sqrt(r^2 + pitch^2), r its distance from the axis, and
+/// every map after it is rigid. Over the box z_i is at most the moves of the joints before it
+/// from its place at c, so joint i moves y by at most w_i sqrt((r_i(c) + move_<i)^2 + pitch_i^2)
+/// (w_i for a prismatic joint). `moves` receives each joint's share.
+Vector3d back_through(const Motion& motion, const Eigen::Isometry3d& home_inverse, const double* c, const double* w,
+                      Vector3d z, double* moves) {
+  double before = 0.0;
   for (std::size_t i = 0; i < motion.joints.size(); ++i) {
     const ScrewJoint& j = motion.joints[i];
     if (j.type == JointType::Prismatic) {
-      y -= j.direction * q[i];
+      moves[i] = w[i];
+      before += moves[i];
+      z -= j.direction * c[i];
       continue;
     }
-    const Vector3d v = y - j.point - j.direction * (j.pitch * q[i]);
-    const double c = std::cos(q[i]), sn = std::sin(q[i]);
-    y = j.point + v * c - j.direction.cross(v) * sn + j.direction * (j.direction.dot(v) * (1 - c));
+    const Vector3d v = z - j.point - j.direction * (j.pitch * c[i]);
+    const double r = (v - j.direction.dot(v) * j.direction).norm() + before;
+    moves[i] = w[i] * std::sqrt(r * r + j.pitch * j.pitch);
+    before += moves[i];
+    const double cs = std::cos(c[i]), sn = std::sin(c[i]);
+    z = j.point + v * cs - j.direction.cross(v) * sn + j.direction * (j.direction.dot(v) * (1 - cs));
   }
-  return home_inverse * y;
+  return home_inverse * z;
 }
 
 }  // namespace
@@ -70,17 +81,10 @@ int swept_set_membership(const SignedDistance& sd, const Motion& motion, const V
   const std::size_t n = motion.dof();
   SWEEP_ASSERT(n >= 1, "motion without joints");
   // Branch and bound over the joint box. For a sub-box with half-widths w_i around centre c, the
-  // body-frame point y(q) = M(q)^-1 x moves at most sum_i S_i w_i from y(c), with S_i the speed
-  // bound of joint i at the distance of x from the origin; sd is 1-Lipschitz.
-  const double reach = x.norm() + motion.home.translation().norm();
-  std::vector<double> speed(n);
-  double lever = reach;
-  for (const auto& j : motion.joints) lever += j.point.norm();
-  for (std::size_t i = 0; i < n; ++i) {
-    const auto& j = motion.joints[i];
-    speed[i] = j.is_rotation() ? lever + std::abs(j.pitch) + j.point.norm() : 1.0;
-  }
+  // body-frame point y(q) = M(q)^-1 x moves at most the sum of back_through()'s moves from y(c);
+  // sd is 1-Lipschitz.
   const Eigen::Isometry3d home_inverse = motion.home.inverse();
+  std::vector<double> w(n), moves(n);
   // The sub-boxes, 2n values each (lo then hi) in one pool; a box's slot is reused once it is split.
   std::vector<double> pool;
   std::vector<std::size_t> free_slots;
@@ -109,15 +113,18 @@ int swept_set_membership(const SignedDistance& sd, const Motion& motion, const V
   auto visit = [&](std::size_t slot) -> int {
     const double* lo = &pool[2 * n * slot];
     const double* hi = lo + n;
+    for (std::size_t i = 0; i < n; ++i) {
+      c[i] = 0.5 * (lo[i] + hi[i]);
+      w[i] = 0.5 * (hi[i] - lo[i]);
+    }
+    const Vector3d y = back_through(motion, home_inverse, c.data(), w.data(), x, moves.data());
     double move = 0.0, widest = -1.0;
     std::size_t split = 0;
     for (std::size_t i = 0; i < n; ++i) {
-      c[i] = 0.5 * (lo[i] + hi[i]);
-      const double m = speed[i] * 0.5 * (hi[i] - lo[i]);
-      move += m;
-      if (m > widest) { widest = m; split = i; }
+      move += moves[i];
+      if (moves[i] > widest) { widest = moves[i]; split = i; }
     }
-    const double d = sd.below(back_through(motion, home_inverse, c.data(), x), move);
+    const double d = sd.below(y, move);
     if (d <= 0.0) return 1;
     int kept = 0;
     if (d > move || move < resolution) {
