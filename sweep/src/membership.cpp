@@ -17,20 +17,34 @@ namespace {
 
 using Eigen::Vector3d;
 
-/// A box of the branch and bounds (joint values, then entity parameters).
-struct SearchBox {
-  std::vector<double> lo, hi;
-};
+/// The boxes of a depth-first branch and bound over k coordinates (joint values, then entity
+/// parameters), k lows then k highs each, in one array: the last box is the next to visit.
+class BoxStack {
+ public:
+  explicit BoxStack(std::size_t k) : k_(k) {}
+  void push(const std::vector<double>& lo, const std::vector<double>& hi) {
+    values_.insert(values_.end(), lo.begin(), lo.end());
+    values_.insert(values_.end(), hi.begin(), hi.end());
+  }
+  bool empty() const { return values_.empty(); }
+  const double* top_lo() const { return &values_[values_.size() - 2 * k_]; }
+  const double* top_hi() const { return top_lo() + k_; }
+  void pop() { values_.resize(values_.size() - 2 * k_); }
+  /// Replaces the last box by its two halves split at coordinate `i`'s midpoint, the lower half
+  /// last (visited first).
+  void split_top(std::size_t i) {
+    const std::size_t at = values_.size() - 2 * k_;
+    values_.resize(values_.size() + 2 * k_);
+    std::copy(values_.begin() + at, values_.begin() + at + 2 * k_, values_.begin() + at + 2 * k_);
+    const double mid = 0.5 * (values_[at + i] + values_[at + k_ + i]);
+    values_[at + i] = mid;                // the upper half, below
+    values_[at + 2 * k_ + k_ + i] = mid;  // the lower half, on top
+  }
 
-/// Pushes the two halves of `b` split at coordinate `k`'s midpoint.
-void push_halves(std::vector<SearchBox>& stack, SearchBox b, std::size_t k) {
-  SearchBox b2 = b;
-  const double mid = 0.5 * (b.lo[k] + b.hi[k]);
-  b.hi[k] = mid;
-  b2.lo[k] = mid;
-  stack.push_back(std::move(b2));
-  stack.push_back(std::move(b));
-}
+ private:
+  std::size_t k_;
+  std::vector<double> values_;
+};
 
 }  // namespace
 
@@ -362,17 +376,16 @@ int swept_image_membership(const ParametricEntity& e, const Motion& motion, cons
     hi[n + j] = e.hi(j);
   }
   const double eps = 1e-10 * scale;
-  std::vector<SearchBox> stack{SearchBox{lo, hi}};
+  BoxStack stack(k);
+  stack.push(lo, hi);
   std::vector<double> c(k), w(k), speed(n);
   std::vector<Eigen::Isometry3d> joint_pose(n);
   std::size_t iterations = 0;
   bool unresolved = false;
   while (!stack.empty()) {
-    SearchBox b = std::move(stack.back());
-    stack.pop_back();
     for (std::size_t i = 0; i < k; ++i) {
-      c[i] = 0.5 * (b.lo[i] + b.hi[i]);
-      w[i] = 0.5 * (b.hi[i] - b.lo[i]);
+      c[i] = 0.5 * (stack.top_lo()[i] + stack.top_hi()[i]);
+      w[i] = 0.5 * (stack.top_hi()[i] - stack.top_lo()[i]);
     }
     // P(q, s) = E_1(q_1) ... E_n(q_n) home Gamma(s). With Q_i = E_{i+1} ... E_n home Gamma, the speed
     // |dP/dq_i| is the distance of Q_i from joint i's axis (with the pitch); over the box Q_i moves
@@ -401,18 +414,22 @@ int swept_image_membership(const ParametricEntity& e, const Motion& motion, cons
       Q = joint_pose[i] * Q;
     }
     const double gap = (Q - x).norm();
-    if (gap > move) continue;
-    if (second_order && second_order_gap(e, motion, x, Q, joint_pose, c, w, speed, dg) > 0) continue;
+    if (gap > move || (second_order && second_order_gap(e, motion, x, Q, joint_pose, c, w, speed, dg) > 0)) {
+      stack.pop();
+      continue;
+    }
     if (gap < 0.5 * move && solve_image(e, motion, x, c, lo, hi, eps)) return 1;
     if (move < resolution) {  // no exclusion and no solve within the resolution
       unresolved = true;
+      stack.pop();
       continue;
     }
     if (++iterations > budget) {
       if (undecided_past_budget) return -1;
+      stack.pop();
       continue;
     }
-    push_halves(stack, std::move(b), split);
+    stack.split_top(split);
   }
   return unresolved && undecided_past_budget ? -1 : 0;
 }
