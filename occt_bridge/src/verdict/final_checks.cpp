@@ -258,9 +258,13 @@ void monte_carlo_check(const RunEntity& run_entity, const Motion& clipped, const
                                        Settings::resolution * size);
     mc = monte_carlo_volume([&](const Eigen::Vector3d& x) { return by_trajectory(x); }, box,
                             std::min<std::size_t>(settings.mc_samples, 20000), settings.seed);
-  } else if (const std::shared_ptr<const SignedDistance> bound = n > 1 && !pe ? run_entity.search_bound() : nullptr) {
-    mc = monte_carlo_volume([&](const Eigen::Vector3d& x) { return in_swept_set(*bound, m, x, Settings::resolution * size); },
-                            box, chain_samples, settings.seed);
+  } else if (const auto bound = n > 1 && !pe ? run_entity.search_bound() : nullptr) {
+    // a B-rep solid's bound: the points it leaves undecided (within its slack of the boundary)
+    // count as out, far below the estimate's own error
+    const auto in_set = [&](const Eigen::Vector3d& x) {
+      return in_swept_set(*bound, m, x, Settings::resolution * size);
+    };
+    mc = monte_carlo_volume(in_set, box, chain_samples, settings.seed);
   } else if (pe) {
     // Here the independent membership is a search over the joint and entity parameters, far
     // slower than classifying a point against the solid: each sample is classified against the
