@@ -110,6 +110,17 @@ def test_joint_properties_drive_the_sweep():
     FreeCAD.closeDocument(doc.Name)
 
 
+def test_part_box_under_two_joints():
+    # a body moved by a chain, as a robot link: its shape goes to the core as a B-rep, and the
+    # verdict searches the joint box with that B-rep's distance bound
+    doc = new_doc("part_box_chain")
+    box = unit_box(doc, (1, 0, 0))
+    joints = [{"type": "prismatic", "direction": [0, 0, 1], "range": [0, 2]}] + REVOLVE_Z
+    obj = sweep_freecad.make_sweep(doc, entity=box, joints=joints, angles="deg")
+    assert_ok(obj, 3 * QUARTER)  # the quarter turn's section over a height of 1 + 2
+    FreeCAD.closeDocument(doc.Name)
+
+
 def test_screw_spec_keeps_its_kind():
     import math
     doc = new_doc("screw")
