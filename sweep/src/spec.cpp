@@ -556,7 +556,7 @@ const std::vector<EntityKindInfo>& entity_kinds() {
       {"elliptic_cylinder", EntityKind::EllipticCylinder, {"base", "axis", "a", "b", "height", "twist"}},
       {"implicit", EntityKind::Implicit, {"inequalities", "bounds"}},
       {"brep", EntityKind::Brep, {"file"}},
-      {"mesh", EntityKind::Mesh, {"file"}},
+      {"mesh", EntityKind::Mesh, {"file", "scale"}},
       {"tube", EntityKind::Tube, {"spine", "radius"}},
   };
   return kinds;
@@ -723,6 +723,7 @@ EntitySpec entity(const Ctx& c, const ojson& j, const std::string& ptr) {
       break;
     case EntityKind::Mesh:
       e.file = resolve_file(c, j, ptr, {".stl", ".off"}, "an STL or OFF file");
+      if (const ojson* s = optional_field(j, "scale")) e.scale = positive(c, *s, at("scale"));
       break;
     case EntityKind::Tube: {
       const std::string sp = at("spine");

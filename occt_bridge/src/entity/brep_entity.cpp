@@ -213,7 +213,7 @@ class BrepDistance : public SignedDistance {
 
 class BrepEntity : public Entity {
  public:
-  explicit BrepEntity(const TopoDS_Shape& shape) : shape_(shape) {
+  BrepEntity(const TopoDS_Shape& shape, EntityKind kind) : shape_(shape), kind_(kind) {
     Bnd_Box b;
     BRepBndLib::AddOptimal(shape, b, false, false);
     if (b.IsVoid()) throw ComputeError("the B-rep entity has no geometry");
@@ -227,7 +227,7 @@ class BrepEntity : public Entity {
     for (int k = 1; k <= faces.Extent(); ++k) faces_.push_back(face_patch(TopoDS::Face(faces(k)), k));
     add_edges(shape);
   }
-  EntityKind kind() const override { return EntityKind::Brep; }
+  EntityKind kind() const override { return kind_; }
   int dimension() const override { return dimension_; }
   Eigen::AlignedBox3d box() const override { return box_; }
   bool inside(const Eigen::Vector3d& p) const override { return dimension_ == 3 && bound().inside(p); }
@@ -283,6 +283,7 @@ class BrepEntity : public Entity {
   }
 
   TopoDS_Shape shape_;
+  EntityKind kind_;
   Eigen::AlignedBox3d box_;
   int dimension_ = 3;
   std::vector<PatchPtr> faces_, edges_;
@@ -292,6 +293,6 @@ class BrepEntity : public Entity {
 
 }  // namespace
 
-EntityPtr brep_entity(const TopoDS_Shape& shape) { return std::make_shared<BrepEntity>(shape); }
+EntityPtr brep_entity(const TopoDS_Shape& shape, EntityKind kind) { return std::make_shared<BrepEntity>(shape, kind); }
 
 }  // namespace sweep::occt

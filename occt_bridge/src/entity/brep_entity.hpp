@@ -20,6 +20,7 @@ namespace sweep::occt {
 ///   slack() (so tight_distance() is false). The inside test is exact: OCCT's classifier near the
 ///   faces. The triangulation is made at the bound's first use, which throws ComputeError when
 ///   it is not closed.
-EntityPtr brep_entity(const TopoDS_Shape& shape);
+/// `kind`: what the spec named it (brep, or mesh for a polyhedron read from a triangle mesh).
+EntityPtr brep_entity(const TopoDS_Shape& shape, EntityKind kind = EntityKind::Brep);
 
 }  // namespace sweep::occt

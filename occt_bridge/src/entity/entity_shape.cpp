@@ -35,6 +35,7 @@
 
 #include "base/internal.hpp"
 #include "entity/elliptic_cylinder.hpp"
+#include "entity/mesh_solid.hpp"
 #include "faces/patch_face.hpp"
 #include "sweep/entity.hpp"
 #include "sweep/error.hpp"
@@ -363,6 +364,9 @@ TopoDS_Shape entity_shape(const EntitySpec& e, double tol, double* fit_error, co
       if (!exact.IsNull()) s = exact;
       break;
     }
+    case EntityKind::Mesh:
+      s = mesh_solid(e);
+      break;
     case EntityKind::Brep: {
       s = read_shape_file(e.file, "/entity/file");
       ShapeFix_Shape fix(s);

@@ -91,14 +91,15 @@ nlohmann::json Variety::to_json() const {
 
 namespace {
 TopoDS_Shape file_shape_of(const EntitySpec& s) {
-  return s.kind == EntityKind::Brep ? entity_shape(s, 0.0, nullptr) : TopoDS_Shape();
+  const bool file = s.kind == EntityKind::Brep || s.kind == EntityKind::Mesh;
+  return file ? entity_shape(s, 0.0, nullptr) : TopoDS_Shape();
 }
 }  // namespace
 
 RunEntity::RunEntity(const EntitySpec& s)
     : spec(s),
       file_shape(file_shape_of(s)),
-      core(file_shape.IsNull() ? make_entity(s) : brep_entity(file_shape)),
+      core(file_shape.IsNull() ? make_entity(s) : brep_entity(file_shape, s.kind)),
       pe(ParametricEntity::make(s)) {
   if (core) {
     if (core->tight_distance()) sd = core->distance_bound();

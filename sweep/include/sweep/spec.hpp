@@ -44,6 +44,7 @@ struct EntitySpec {
   std::array<Expr, 3> xyz;                                       ///< curve, surface
   std::vector<Expr> inequalities;                                ///< implicit, in x, y, z
   std::string file;                                              ///< brep, mesh: resolved path
+  double scale = 1.0;                                            ///< mesh: its coordinates' factor
   std::optional<Expr> tube_radius;                               ///< tube, in the spine parameter
   std::shared_ptr<EntitySpec> spine;                             ///< tube
   Eigen::Isometry3d placement = Eigen::Isometry3d::Identity();
