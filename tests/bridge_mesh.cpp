@@ -54,7 +54,8 @@ void write_cube_stl(const std::string& path, double a) {
 
 sweep::occt::RunResult run(const std::string& entity, const std::string& joints) {
   const sweep::Spec spec = sweep::parse_spec(
-      R"({"sweep": 1, "angles": "deg", "entity": )" + entity + R"(, "motion": {"kind": "axes", "joints": )" + joints + "}}",
+      R"({"sweep": 1, "angles": "deg", "entity": )" + entity + R"(, "motion": {"kind": "axes", "joints": )" + joints +
+          "}}",
       SWEEP_BINARY_DIR);
   return sweep::occt::run_sweep(spec);
 }

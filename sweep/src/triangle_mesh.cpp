@@ -33,7 +33,8 @@ T number(std::istream& in, const std::string& pointer, const std::string& what) 
   if (!next_token(in, token)) throw InputError(pointer, "the OFF file ends before " + what);
   std::istringstream ts(token);
   T v{};
-  if (!(ts >> v) || !ts.eof()) throw InputError(pointer, "the OFF file has '" + token + "' where " + what + " should be");
+  if (!(ts >> v) || !ts.eof())
+    throw InputError(pointer, "the OFF file has '" + token + "' where " + what + " should be");
   return v;
 }
 
@@ -60,10 +61,12 @@ TriangleMesh read_off(std::istream& in, const std::string& pointer) {
     std::vector<int> corners;
     for (long i = 0; i < n; ++i) {
       const long v = number<long>(in, pointer, "a corner of " + what);
-      if (v < 0 || v >= nv) throw InputError(pointer, what + " of the OFF file names vertex " + std::to_string(v) + ", which does not exist");
+      if (v < 0 || v >= nv)
+        throw InputError(pointer, what + " of the OFF file names vertex " + std::to_string(v) + ", which does not exist");
       corners.push_back(int(v));
     }
-    for (std::size_t i = 1; i + 1 < corners.size(); ++i) m.triangles.push_back({corners[0], corners[i], corners[i + 1]});
+    for (std::size_t i = 1; i + 1 < corners.size(); ++i)
+      m.triangles.push_back({corners[0], corners[i], corners[i + 1]});
     std::string rest;
     std::getline(in, rest);  // (a colour may follow)
   }
@@ -79,7 +82,8 @@ TriangleMesh merged_vertices(const TriangleMesh& mesh, double merge) {
   TriangleMesh out;
   for (std::size_t k = 0; k < mesh.vertices.size(); ++k) {
     const Eigen::Vector3d& p = mesh.vertices[k];
-    const std::array<long long, 3> key{std::llround(p.x() / q), std::llround(p.y() / q), std::llround(p.z() / q)};
+    const std::array<long long, 3> key{std::llround(p.x() / q), std::llround(p.y() / q),
+                                       std::llround(p.z() / q)};
     const auto [it, added] = index.emplace(key, int(out.vertices.size()));
     if (added) out.vertices.push_back(p);
     to[k] = it->second;
