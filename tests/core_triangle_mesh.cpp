@@ -81,6 +81,25 @@ TEST_CASE("Triangle mesh: repeated vertices merged, as an STL file gives them") 
   CHECK(signed_volume(merged) == Approx(1).epsilon(1e-12));
 }
 
+TEST_CASE("Triangle mesh: a mesh that crosses itself is named, one that only touches along shared corners is not") {
+  // two closed cubes as one mesh: apart, and overlapping (the second pushed into the first)
+  for (const double shift : {1.5, 0.5}) {
+    TriangleMesh two = cube(1);
+    const TriangleMesh second = cube(1);
+    for (const auto& p : second.vertices) two.vertices.push_back(p + Eigen::Vector3d(shift, 0.25, 0.25));
+    for (const auto& t : second.triangles) two.triangles.push_back({t[0] + 8, t[1] + 8, t[2] + 8});
+    std::string why;
+    try {
+      check_not_crossing_itself(two, "/entity/file");
+    } catch (const InputError& e) {
+      why = e.what();
+    }
+    CAPTURE(shift, why);
+    CHECK((shift < 1) == (why.find("crosses itself") != std::string::npos));
+  }
+  CHECK_NOTHROW(check_not_crossing_itself(cube(1), "/entity/file"));
+}
+
 TEST_CASE("Triangle mesh: bad OFF text is an input error") {
   for (const std::string text : {"OFF\n8 6\n", "PLY\n", "OFF\n4 4 6\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 7\n"}) {
     std::istringstream in(text);

@@ -126,6 +126,60 @@ void check_closed_oriented(const TriangleMesh& mesh, const std::string& pointer)
   }
 }
 
+namespace {
+
+/// Whether the segment [p, q] passes through the triangle (a, b, c) away from its sides and from
+/// the segment's ends (by `eps` in the barycentric and segment parameters).
+bool segment_crosses(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& a,
+                     const Eigen::Vector3d& b, const Eigen::Vector3d& c, double eps) {
+  const Eigen::Vector3d d = q - p, e1 = b - a, e2 = c - a, h = d.cross(e2);
+  const double det = e1.dot(h);
+  if (std::abs(det) <= 1e-14 * e1.cross(e2).norm() * d.norm()) return false;  // parallel
+  const Eigen::Vector3d s = p - a;
+  const double u = s.dot(h) / det;
+  const Eigen::Vector3d r = s.cross(e1);
+  const double v = d.dot(r) / det, t = e2.dot(r) / det;
+  return u > eps && v > eps && u + v < 1 - eps && t > eps && t < 1 - eps;
+}
+
+}  // namespace
+
+void check_not_crossing_itself(const TriangleMesh& mesh, const std::string& pointer) {
+  const std::size_t n = mesh.triangles.size();
+  std::vector<Eigen::AlignedBox3d> boxes(n);
+  std::vector<std::size_t> order(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    for (int i = 0; i < 3; ++i) boxes[k].extend(mesh.vertices[mesh.triangles[k][i]]);
+    order[k] = k;
+  }
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return boxes[a].min().x() < boxes[b].min().x(); });
+  const double eps = 1e-9;
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t a = order[i];
+    const auto& ta = mesh.triangles[a];
+    for (std::size_t j = i + 1; j < n && boxes[order[j]].min().x() <= boxes[a].max().x(); ++j) {
+      const std::size_t b = order[j];
+      if (!boxes[a].intersects(boxes[b])) continue;
+      const auto& tb = mesh.triangles[b];
+      bool shared = false;
+      for (int x = 0; x < 3; ++x)
+        for (int y = 0; y < 3; ++y) shared = shared || ta[x] == tb[y];
+      if (shared) continue;
+      bool cross = false;
+      for (int s = 0; s < 3 && !cross; ++s) {
+        const auto& V = mesh.vertices;
+        cross = segment_crosses(V[ta[s]], V[ta[(s + 1) % 3]], V[tb[0]], V[tb[1]], V[tb[2]], eps) ||
+                segment_crosses(V[tb[s]], V[tb[(s + 1) % 3]], V[ta[0]], V[ta[1]], V[ta[2]], eps);
+      }
+      if (cross)
+        throw InputError(pointer, "the mesh crosses itself: triangles " + std::to_string(std::min(a, b)) + " and " +
+                                      std::to_string(std::max(a, b)) + " cross (near " +
+                                      point_text(mesh.vertices[ta[0]]) + ")");
+    }
+  }
+}
+
 double signed_volume(const TriangleMesh& mesh) {
   double v = 0;
   for (const auto& t : mesh.triangles)

@@ -59,6 +59,7 @@ TopoDS_Shape mesh_solid(const EntitySpec& e) {
   TriangleMesh mesh = merged_vertices(read_mesh(e.file), 1e-12);
   for (auto& p : mesh.vertices) p *= e.scale;
   check_closed_oriented(mesh, kPointer);
+  check_not_crossing_itself(mesh, kPointer);
   if (signed_volume(mesh) < 0)
     for (auto& t : mesh.triangles) std::swap(t[1], t[2]);
   Eigen::AlignedBox3d box;

@@ -2,7 +2,7 @@
 /// @file triangle_mesh.hpp
 /// A triangle mesh given as a solid (the `mesh` entity): reading OFF, and the checks that make it
 /// the boundary of a solid (no degenerate triangle, every edge shared by exactly two triangles
-/// that run along it in opposite directions).
+/// that run along it in opposite directions, no two triangles crossing).
 #include <Eigen/Core>
 #include <array>
 #include <istream>
@@ -28,6 +28,11 @@ TriangleMesh merged_vertices(const TriangleMesh& mesh, double merge);
 /// (index given), an edge used by one triangle or by more than two (its vertices given), or two
 /// triangles that run along a shared edge in the same direction (inconsistent orientation).
 void check_closed_oriented(const TriangleMesh& mesh, const std::string& pointer);
+
+/// @throws InputError at `pointer` when two triangles that share no vertex cross (a side of one
+/// passes through the other's interior): the mesh crosses itself and bounds no solid. Triangles are
+/// paired by their boxes along x (sweep and prune).
+void check_not_crossing_itself(const TriangleMesh& mesh, const std::string& pointer);
 
 /// The volume the mesh encloses, negative when its triangles face inward.
 double signed_volume(const TriangleMesh& mesh);
