@@ -1,15 +1,19 @@
-// The `mesh` entity: a cube given as OFF and as binary STL, swept and checked against closed forms;
+// The `mesh` entity: a cube given as OFF and as binary STL and an 80-triangle polyhedron, swept and
+// checked against closed forms;
 // a mesh that bounds no solid is an input error naming /entity/file.
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <map>
 #include <string>
+#include <vector>
 
 #include "occt_bridge/sweeper.hpp"
 #include "sweep/error.hpp"
 #include "sweep/spec.hpp"
+#include "sweep/triangle_mesh.hpp"
 
 namespace {
 
@@ -111,4 +115,63 @@ TEST_CASE("Mesh entity: a cube under a slide and a turn is the box primitive's s
   REQUIRE(box.report.ok());
   CHECK(mesh.report.verdict_membership == "certified search over the joint box (signed distance)");
   CHECK(mesh.report.volume_brep == Approx(box.report.volume_brep).epsilon(1e-9));
+}
+
+namespace {
+
+/// An icosahedron on the unit sphere, its triangles split in four `levels` times (vertices pushed
+/// out onto the sphere), written as OFF.
+void write_icosphere_off(const std::string& path, int levels) {
+  const double g = (1 + std::sqrt(5.0)) / 2;
+  std::vector<Eigen::Vector3d> v = {{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0}, {0, -1, g}, {0, 1, g},
+                                    {0, -1, -g}, {0, 1, -g}, {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
+  for (auto& p : v) p.normalize();
+  std::vector<std::array<int, 3>> f = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
+                                       {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
+                                       {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
+                                       {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
+  for (int level = 0; level < levels; ++level) {
+    std::map<std::pair<int, int>, int> middle;
+    auto mid = [&](int a, int b) {
+      const auto key = std::minmax(a, b);
+      const auto it = middle.find(key);
+      if (it != middle.end()) return it->second;
+      v.push_back((v[a] + v[b]).normalized());
+      return middle[key] = int(v.size()) - 1;
+    };
+    std::vector<std::array<int, 3>> finer;
+    for (const auto& t : f) {
+      const int ab = mid(t[0], t[1]), bc = mid(t[1], t[2]), ca = mid(t[2], t[0]);
+      finer.insert(finer.end(), {{t[0], ab, ca}, {t[1], bc, ab}, {t[2], ca, bc}, {ab, bc, ca}});
+    }
+    f = finer;
+  }
+  std::ofstream out(path);
+  out.precision(17);
+  out << "OFF\n" << v.size() << " " << f.size() << " 0\n";
+  for (const auto& p : v) out << p.x() << " " << p.y() << " " << p.z() << "\n";
+  for (const auto& t : f) out << "3 " << t[0] << " " << t[1] << " " << t[2] << "\n";
+}
+
+}  // namespace
+
+TEST_CASE("Mesh entity: a convex polyhedron of 80 triangles slid, against the projected-area formula") {
+  // A convex solid K slid L along the unit direction d sweeps vol(K) + L area(K projected along
+  // d), and the projection of a convex polyhedron has half the area of its faces' |n . d| sum.
+  write_icosphere_off(SWEEP_BINARY_DIR "/mesh_icosphere_80.off", 1);
+  std::ifstream in(SWEEP_BINARY_DIR "/mesh_icosphere_80.off");
+  const sweep::TriangleMesh m = sweep::read_off(in, "");
+  REQUIRE(m.triangles.size() == 80);
+  const Eigen::Vector3d d = Eigen::Vector3d(1, 0.3, 0.2).normalized();
+  const double L = 2;
+  double projected = 0;
+  for (const auto& t : m.triangles) {
+    const Eigen::Vector3d n = (m.vertices[t[1]] - m.vertices[t[0]]).cross(m.vertices[t[2]] - m.vertices[t[0]]);
+    projected += 0.25 * std::abs(n.dot(d));  // half of each face's area times |cos|
+  }
+  const auto r = run(R"({"kind": "mesh", "file": "mesh_icosphere_80.off"})",
+                     R"([{"type": "prismatic", "direction": [1, 0.3, 0.2], "range": [0, 2]}])");
+  CAPTURE(r.report.to_json().dump());
+  REQUIRE(r.report.ok());
+  CHECK(r.report.volume_brep == Approx(sweep::signed_volume(m) + L * projected).epsilon(1e-9));
 }
