@@ -105,4 +105,12 @@ TEST_CASE("Triangle mesh: bad OFF text is an input error") {
     std::istringstream in(text);
     CHECK_THROWS_AS(read_off(in, "/entity/file"), InputError);
   }
+  // a concave quad (an arrowhead), whose fan would cover part of it twice
+  std::istringstream arrow("OFF\n5 4 0\n0 0 0\n2 1 0\n0 2 0\n0.5 1 0\n0 0 1\n4 0 1 2 3\n");
+  try {
+    read_off(arrow, "/entity/file");
+    FAIL("a concave polygon read");
+  } catch (const InputError& e) {
+    CHECK(std::string(e.what()).find("face 0 of the OFF file is not a convex polygon") != std::string::npos);
+  }
 }

@@ -65,8 +65,18 @@ TriangleMesh read_off(std::istream& in, const std::string& pointer) {
         throw InputError(pointer, what + " of the OFF file names vertex " + std::to_string(v) + ", which does not exist");
       corners.push_back(int(v));
     }
-    for (std::size_t i = 1; i + 1 < corners.size(); ++i)
+    // a fan, which covers the polygon once only when it is convex: every triangle of the fan must
+    // face the way the polygon does (Newell's normal)
+    Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+    for (std::size_t i = 0; i < corners.size(); ++i)
+      normal += m.vertices[corners[i]].cross(m.vertices[corners[(i + 1) % corners.size()]]);
+    for (std::size_t i = 1; i + 1 < corners.size(); ++i) {
+      const Eigen::Vector3d& a = m.vertices[corners[0]];
+      const Eigen::Vector3d n = (m.vertices[corners[i]] - a).cross(m.vertices[corners[i + 1]] - a);
+      if (corners.size() > 3 && n.dot(normal) <= 0)
+        throw InputError(pointer, what + " of the OFF file is not a convex polygon (split it into triangles)");
       m.triangles.push_back({corners[0], corners[i], corners[i + 1]});
+    }
     std::string rest;
     std::getline(in, rest);  // (a colour may follow)
   }

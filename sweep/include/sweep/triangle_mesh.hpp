@@ -16,8 +16,9 @@ struct TriangleMesh {
   std::vector<std::array<int, 3>> triangles;  ///< vertex indices, counter-clockwise seen from outside
 };
 
-/// Reads OFF text ("OFF", the counts, the vertices, then faces as "n i_1 ... i_n"; polygons are
-/// split into fans). @throws InputError at `pointer`, saying what is wrong and where.
+/// Reads OFF text ("OFF", the counts, the vertices, then faces as "n i_1 ... i_n"; convex polygons
+/// are split into fans, a polygon that is not convex is refused). @throws InputError at `pointer`,
+/// saying what is wrong and where.
 TriangleMesh read_off(std::istream& in, const std::string& pointer);
 
 /// Vertices closer than `merge` (x the mesh's size) made one, and the triangles that then lose a
