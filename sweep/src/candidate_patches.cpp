@@ -1,6 +1,7 @@
 #include "sweep/candidate_patches.hpp"
 
 #include <Eigen/SVD>
+#include <algorithm>
 #include <cstdio>
 
 #include "sweep/envelope.hpp"
@@ -58,6 +59,10 @@ void add_side_sheets(const PatchPtr& face, int face_index, const std::shared_ptr
 
 }  // namespace
 
+bool has_trimmed_faces(const Entity& entity) {
+  return std::any_of(entity.faces().begin(), entity.faces().end(), [](const PatchPtr& f) { return f->trimmed; });
+}
+
 std::vector<CandidatePatch> candidate_patches(const Entity& entity, const std::shared_ptr<const StageMotion>& motion,
                                               const std::function<void()>& check) {
   auto poll = [&check] {
@@ -66,10 +71,9 @@ std::vector<CandidatePatch> candidate_patches(const Entity& entity, const std::s
   std::vector<CandidatePatch> out;
   const double lo = motion->lo(), hi = motion->hi();
   const std::vector<PatchPtr>& faces = entity.faces();
-  for (const PatchPtr& f : faces)
-    if (f->trimmed)
-      throw ComputeError("the candidate patches of trimmed faces (" + f->what() +
-                         ") are not built yet: end copies and envelope sheets take whole parameter boxes");
+  if (has_trimmed_faces(entity))
+    throw ComputeError("the candidate patches of trimmed faces (B-rep solids) are not built yet: end copies and "
+                       "envelope sheets take whole parameter boxes");
   for (double t : {lo, hi})
     for (std::size_t k = 0; k < faces.size(); ++k) {
       poll();

@@ -140,14 +140,9 @@ int swept_set_membership(const SignedDistance& sd, const Motion& motion, const V
     }
     const double d = sd.below(y, move);
     if (d <= 0.0) return 1;
-    int kept = 0;
-    if (d > move || move < resolution) {
-      kept = -1;  // out, or within resolution of the boundary: out
-    } else if (move < slack) {
-      uncertain = true;
-      kept = -1;
-    }
-    if (kept < 0) {
+    const bool out = d > move || move < resolution;  // out, or within resolution of the boundary: out
+    if (!out && move < slack) uncertain = true;
+    if (out || uncertain) {
       free_slots.push_back(slot);
       return -1;
     }

@@ -4,12 +4,10 @@
 
 #include <BRepAdaptor_Curve.hxx>
 #include <BRepAdaptor_Surface.hxx>
-#include <BRepBndLib.hxx>
 #include <BRepBuilderAPI_Copy.hxx>
 #include <BRepClass3d_SolidClassifier.hxx>
 #include <BRepTools.hxx>
 #include <BRep_Tool.hxx>
-#include <Bnd_Box.hxx>
 #include <Geom_Curve.hxx>
 #include <Geom_Surface.hxx>
 #include <Poly_Triangulation.hxx>
@@ -31,15 +29,13 @@
 namespace sweep::occt {
 namespace {
 
-Eigen::Vector3d dir(const gp_Dir& d) { return {d.X(), d.Y(), d.Z()}; }
-
 /// The closed form of a face's surface, in PatchForm's frame, when it is elementary.
 PatchForm surface_form(const BRepAdaptor_Surface& s) {
   PatchForm f;
   auto frame = [&f](const gp_Ax3& a) {
     f.origin = to_eigen(a.Location());
-    f.axis = dir(a.Direction());
-    f.ref = dir(a.XDirection());
+    f.axis = to_eigen(a.Direction().XYZ());
+    f.ref = to_eigen(a.XDirection().XYZ());
   };
   switch (s.GetType()) {
     case GeomAbs_Plane:
@@ -88,20 +84,20 @@ PatchForm curve_form(const BRepAdaptor_Curve& c) {
     case GeomAbs_Line:
       f.kind = PatchForm::Kind::Line;
       f.origin = to_eigen(c.Line().Location());
-      f.axis = dir(c.Line().Direction());
+      f.axis = to_eigen(c.Line().Direction().XYZ());
       break;
     case GeomAbs_Circle:
       f.kind = PatchForm::Kind::Circle;
       f.origin = to_eigen(c.Circle().Location());
-      f.axis = dir(c.Circle().Axis().Direction());
-      f.ref = dir(c.Circle().XAxis().Direction());
+      f.axis = to_eigen(c.Circle().Axis().Direction().XYZ());
+      f.ref = to_eigen(c.Circle().XAxis().Direction().XYZ());
       f.radius = c.Circle().Radius();
       break;
     case GeomAbs_Ellipse:
       f.kind = PatchForm::Kind::Ellipse;
       f.origin = to_eigen(c.Ellipse().Location());
-      f.axis = dir(c.Ellipse().Axis().Direction());
-      f.ref = dir(c.Ellipse().XAxis().Direction());
+      f.axis = to_eigen(c.Ellipse().Axis().Direction().XYZ());
+      f.ref = to_eigen(c.Ellipse().XAxis().Direction().XYZ());
       f.radius = c.Ellipse().MajorRadius();
       f.minor = c.Ellipse().MinorRadius();
       break;
@@ -184,23 +180,25 @@ double triangulation_deviation(const TopoDS_Shape& meshed) {
 /// The distance bound of a solid: see brep_entity().
 class BrepDistance : public SignedDistance {
  public:
-  BrepDistance(TopoDS_Shape solid, std::vector<Triangle> triangles, double slack, double classifier_tol)
-      : solid_(std::move(solid)), mesh_(std::move(triangles)), slack_(slack), classifier_tol_(classifier_tol) {}
+  /// `deviation`: how far the faces and the triangles may be apart (measured, with a margin).
+  BrepDistance(TopoDS_Shape solid, std::vector<Triangle> triangles, double deviation, double classifier_tol)
+      : solid_(std::move(solid)), mesh_(std::move(triangles)), deviation_(deviation), classifier_tol_(classifier_tol) {}
   double operator()(const Eigen::Vector3d& p) const override {
     const double d = mesh_.distance(p);
-    if (d < 2 * slack_) return std::numeric_limits<double>::min();  // near the faces: either side
-    return mesh_.inside(p) ? -(d - slack_) : d - slack_;
+    if (d < slack()) return std::numeric_limits<double>::min();  // near the faces: either side
+    return mesh_.inside(p) ? -(d - deviation_) : d - deviation_;
   }
-  double slack() const override { return 2 * slack_; }
+  /// Within twice the deviation of the triangles, their side is not the faces' side for sure.
+  double slack() const override { return 2 * deviation_; }
   double below(const Eigen::Vector3d& p, double limit) const override {
-    const double d = mesh_.distance_below(p, std::max(limit, 0.0) + 2 * slack_);
-    if (d < 2 * slack_) return std::numeric_limits<double>::min();
-    if (mesh_.inside(p)) return -slack_;  // (the faces are at least that far)
-    return d - slack_;
+    const double d = mesh_.distance_below(p, std::max(limit, 0.0) + slack());
+    if (d < slack()) return std::numeric_limits<double>::min();
+    if (mesh_.inside(p)) return -deviation_;  // (the faces are at least that far)
+    return d - deviation_;
   }
   /// Exact: by the triangulation away from the faces, by OCCT's classifier near them.
   bool inside(const Eigen::Vector3d& p) const {
-    if (mesh_.distance_below(p, 2 * slack_) >= 2 * slack_) return mesh_.inside(p);
+    if (mesh_.distance_below(p, slack()) >= slack()) return mesh_.inside(p);
     BRepClass3d_SolidClassifier classifier(solid_, to_pnt(p), classifier_tol_);
     return classifier.State() == TopAbs_IN || classifier.State() == TopAbs_ON;
   }
@@ -208,18 +206,13 @@ class BrepDistance : public SignedDistance {
  private:
   TopoDS_Shape solid_;
   MeshIndex mesh_;
-  double slack_, classifier_tol_;
+  double deviation_, classifier_tol_;
 };
 
 class BrepEntity : public Entity {
  public:
-  BrepEntity(const TopoDS_Shape& shape, EntityKind kind) : shape_(shape), kind_(kind) {
-    Bnd_Box b;
-    BRepBndLib::AddOptimal(shape, b, false, false);
-    if (b.IsVoid()) throw ComputeError("the B-rep entity has no geometry");
-    double x0, y0, z0, x1, y1, z1;
-    b.Get(x0, y0, z0, x1, y1, z1);
-    box_ = Eigen::AlignedBox3d(Eigen::Vector3d(x0, y0, z0), Eigen::Vector3d(x1, y1, z1));
+  BrepEntity(const TopoDS_Shape& shape, EntityKind kind) : shape_(shape), kind_(kind), box_(box_of(shape)) {
+    if (box_.isEmpty()) throw ComputeError("the B-rep entity has no geometry");
     const TopExp_Explorer solids(shape, TopAbs_SOLID);
     dimension_ = solids.More() ? 3 : 2;
     TopTools_IndexedMapOfShape faces;
@@ -276,8 +269,8 @@ class BrepEntity : public Entity {
       std::vector<Triangle> tris = triangulate(copy, Settings::brep_distance_deflection * size, &problem);
       if (!problem.empty())
         throw ComputeError("the B-rep entity's triangulation, behind its distance bound, is not usable: " + problem);
-      const double slack = 2 * triangulation_deviation(copy) + Settings::resolution * size;
-      distance_ = std::make_shared<const BrepDistance>(copy, std::move(tris), slack, Settings::resolution * size);
+      const double deviation = 2 * triangulation_deviation(copy) + Settings::resolution * size;
+      distance_ = std::make_shared<const BrepDistance>(copy, std::move(tris), deviation, Settings::resolution * size);
     });
     return *distance_;
   }

@@ -21,6 +21,7 @@
 
 #include "base/internal.hpp"
 #include "sweep/error.hpp"
+#include "sweep/settings.hpp"
 #include "sweep/triangle_mesh.hpp"
 
 namespace sweep::occt {
@@ -66,7 +67,7 @@ TopoDS_Shape mesh_solid(const EntitySpec& e) {
   for (const auto& p : mesh.vertices) box.extend(p);
   const double size = box.sizes().maxCoeff();
   // one planar face per triangle, sewn along the shared edges (exactly shared: no gap to close)
-  BRepBuilderAPI_Sewing sewing(1e-9 * size);
+  BRepBuilderAPI_Sewing sewing(Settings::resolution * size);
   for (const auto& t : mesh.triangles) {
     BRepBuilderAPI_MakePolygon poly(to_pnt(mesh.vertices[t[0]]), to_pnt(mesh.vertices[t[1]]),
                                     to_pnt(mesh.vertices[t[2]]), true);
@@ -84,7 +85,7 @@ TopoDS_Shape mesh_solid(const EntitySpec& e) {
   if (!make.IsDone()) throw ComputeError("the mesh's shell makes no solid");
   // coplanar neighbours as one face, collinear edges as one
   ShapeUpgrade_UnifySameDomain unify(make.Solid(), true, true, false);
-  unify.SetLinearTolerance(1e-9 * size);
+  unify.SetLinearTolerance(Settings::resolution * size);
   unify.SetAngularTolerance(1e-9);
   unify.Build();
   TopoDS_Shape solid = unify.Shape();

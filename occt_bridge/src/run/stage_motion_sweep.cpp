@@ -351,8 +351,7 @@ void general_solid_sweep(const Spec& spec, const StageMotion& m, const Sizing& s
 /// (no faces are made of them yet); whether they were listed.
 bool list_general_candidates(const Spec& spec, const Sizing& sizing, const RunOptions& opt, RunRecord& record) {
   if (!opt.varieties || !sizing.entity.core || spec.entity.dimension() != 3) return false;
-  for (const PatchPtr& f : sizing.entity.core->faces())
-    if (f->trimmed) return false;  // (their candidate patches are not built yet)
+  if (has_trimmed_faces(*sizing.entity.core)) return false;
   const auto t0 = Clock::now();
   for (const CandidatePatch& c : candidate_patches(*sizing.entity.core, spec.motion.stage, [] { check_stop(); })) {
     Variety v = candidate_variety(c);

@@ -27,6 +27,10 @@ struct CandidatePatch {
   int face = -1;
 };
 
+/// Whether any of the entity's faces is trimmed (Patch::trimmed): its candidate patches are not built
+/// yet.
+bool has_trimmed_faces(const Entity& entity);
+
 /// Every candidate patch of `entity` under `motion`, limit varieties first, then boundary and
 /// interior ones. `check` is called between patches (a stop request may throw from it). Throws
 /// ComputeError for an entity with trimmed faces (B-rep solids).
