@@ -497,10 +497,10 @@ std::vector<Candidate> candidates_of(const TopoDS_Shape& body, BoundaryContext& 
                                     std::to_string(++edge_no) + " swept by joint " + std::to_string(joint_no),
                                 nlohmann::json::object(), efree);
     std::shared_ptr<const TouchingSweep> touching;
-    // (the faces of a helical sweep are fitted: a crossing traced on the exact sweep would lie off
-    // them by their fit error, so OCCT intersects those)
-    const bool exact_sweep = j.type != JointType::Helical || j.pitch == 0;
-    if (is_grazing && exact_sweep && settings.touching_sections)
+    // (a helical sweep's faces are fitted: the crossing traced on the exact sweep lies within their
+    // fit error of them, which is what OCCT's section of the fitted face could not find at all where
+    // the two faces are nearly tangent)
+    if (is_grazing && settings.touching_sections)
       touching = std::make_shared<const TouchingSweep>(TouchingSweep{c, f, l, j, T, BRep_Tool::Surface(TopoDS::Face(fl.First()), l1)});
     for (const auto& face : sw) cands.push_back({face, vid, Candidate::Kind::Swept, {}, -1, touching, {}, -1});
   }
