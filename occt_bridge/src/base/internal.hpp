@@ -91,12 +91,28 @@ struct GrazingEdge {
 };
 GrazingEdge grazing_edge(const GrazingCurve& g, const TopoDS_Face& face, double tol);
 
+/// How a curve's sweep under a helical joint becomes faces: the curve's poles carried along
+/// polynomial helices (lines, conics and splines; other curves are fitted), or always fitted to grids
+/// of exact points.
+enum class HelicalFaces { Spline, Fitted };
+
 /// Faces swept by curve `c` (on [first,last]) under `joint` for q in [0, T]: exact surfaces of
-/// revolution / extrusion, fitted B-spline surfaces for helical motions; split into pieces that do
-/// not overlap themselves, and a helical piece that no grid fits to `tol` into pieces of the curve.
-/// `fit_error` is raised to the largest measured fitting error.
+/// revolution / extrusion, tensor-product or fitted B-spline surfaces for helical motions, one per
+/// piece of at most a quarter turn (a fitted piece that no grid fits to `tol` is split into pieces of
+/// the curve). `fit_error` is raised to the largest measured error from the exact sweep.
 std::vector<TopoDS_Face> sweep_curve(const Handle(Geom_Curve)& c, double first, double last,
-                                     const ScrewJoint& joint, double T, double tol, double* fit_error);
+                                     const ScrewJoint& joint, double T, double tol, double* fit_error,
+                                     HelicalFaces helical = HelicalFaces::Spline);
+
+/// The sweep of c on [s0, s1] under the helical joint j for q in [q0, q1] (at most a half turn) as a
+/// tensor-product spline: c as a B-spline (exact for lines, conics, Bezier and B-spline curves), each
+/// of its poles carried along its helix with the rotation's cos and sin as Bezier polynomials of q.
+/// *err: its largest distance from the exact sweep, bounded by the polynomials' error times the
+/// poles' largest distance from the axis (a convex combination of the poles' helices) and at least
+/// what a grid of exact points measures. Null for a curve of another kind.
+Handle(Geom_BSplineSurface) helical_spline_surface(const Handle(Geom_Curve)& c, double s0, double s1,
+                                                   const ScrewJoint& j, double q0, double q1, double tol,
+                                                   double* err);
 
 /// Parameters where the curve's coordinate along the joint axis turns (empty when it never
 /// does, or when the curve lies in a plane perpendicular to the axis).

@@ -10,6 +10,7 @@
 #include <GeomAPI_ProjectPointOnCurve.hxx>
 #include <Geom_BSplineCurve.hxx>
 #include <Geom_Curve.hxx>
+#include <ShapeAnalysis_Surface.hxx>
 #include <TColgp_Array1OfPnt.hxx>
 
 #include <Eigen/Dense>
@@ -62,6 +63,7 @@ TopoDS_Edge refitted_section_edge(const TopoDS_Edge& e, const TopoDS_Face& a, co
       std::abs(lb - l) > 1e-9 * (1 + std::abs(l)))
     return e;
   const BRepAdaptor_Surface A(a), B(b);
+  ShapeAnalysis_Surface on_a(BRep_Tool::Surface(a)), on_b(BRep_Tool::Surface(b));
   const double stray = 10 * BRep_Tool::Tolerance(e);
   auto refined = [&](double s) -> std::optional<gp_Pnt> {
     gp_Pnt p;
@@ -84,14 +86,25 @@ TopoDS_Edge refitted_section_edge(const TopoDS_Edge& e, const TopoDS_Face& a, co
     GeomAPI_PointsToBSpline fit(pts, 3, 8, GeomAbs_C2, 0.1 * tol);
     if (!fit.IsDone()) continue;
     const Handle(Geom_BSplineCurve) curve = fit.Curve();
-    // how far the fit strays between its points
+    // how far the fit strays between its points: from the true crossing, or where the surfaces
+    // are so near tangent that a point within the tolerance of both lies farther from it than
+    // that (the crossing is then ill-conditioned along them), from the two surfaces
     double worst = 0;
     for (int k = 0; k < m && ok; ++k) {
       const auto q = refined(f + (l - f) * (k + 0.5) / m);
       if (!q) return e;
       GeomAPI_ProjectPointOnCurve proj(*q, curve);
-      if (proj.NbPoints() == 0) ok = false;
-      else worst = std::max(worst, proj.LowerDistance());
+      if (proj.NbPoints() == 0) {
+        ok = false;
+        break;
+      }
+      double stray_here = proj.LowerDistance();
+      if (stray_here > tol) {
+        const gp_Pnt x = proj.NearestPoint();
+        stray_here = std::max(on_a.Value(on_a.ValueOfUV(x, 1e-3 * tol)).Distance(x),
+                              on_b.Value(on_b.ValueOfUV(x, 1e-3 * tol)).Distance(x));
+      }
+      worst = std::max(worst, stray_here);
     }
     if (!ok || worst > tol) continue;
     BRepBuilderAPI_MakeEdge mk(curve);

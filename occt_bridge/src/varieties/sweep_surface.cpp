@@ -19,6 +19,12 @@
 #include <GeomAPI_PointsToBSplineSurface.hxx>
 #include <GeomAdaptor_Surface.hxx>
 #include <Geom_BSplineSurface.hxx>
+#include <Geom_BSplineCurve.hxx>
+#include <Geom_BezierCurve.hxx>
+#include <Geom_Ellipse.hxx>
+#include <GeomConvert.hxx>
+#include <TColStd_Array1OfInteger.hxx>
+#include <TColStd_Array2OfReal.hxx>
 #include <Geom_SurfaceOfLinearExtrusion.hxx>
 #include <Geom_SurfaceOfRevolution.hxx>
 #include <Geom_TrimmedCurve.hxx>
@@ -39,6 +45,7 @@
 #include "base/internal.hpp"
 #include "sweep/error.hpp"
 #include "sweep/settings.hpp"
+#include "sweep/trig_bezier.hpp"
 
 namespace sweep::occt {
 namespace {
@@ -512,7 +519,8 @@ void helical_piece(const Handle(Geom_Curve)& c, double s0, double s1, const Scre
 }  // namespace
 
 std::vector<TopoDS_Face> sweep_curve(const Handle(Geom_Curve)& c, double first, double last,
-                                     const ScrewJoint& j, double T, double tol, double* fit_error) {
+                                     const ScrewJoint& j, double T, double tol, double* fit_error,
+                                     HelicalFaces helical) {
   std::vector<TopoDS_Face> out;
   if (slides_along(c, first, last, j) || on_axis(c, first, last, j, tol)) return out;
   if (c->IsKind(STANDARD_TYPE(Geom_Line)) && j.type == JointType::Revolute) {
@@ -543,7 +551,7 @@ std::vector<TopoDS_Face> sweep_curve(const Handle(Geom_Curve)& c, double first, 
       double a = first;
       cuts.push_back(last);
       for (double b : cuts) {
-        auto part = sweep_curve(c, a, b, j, T, tol, fit_error);
+        auto part = sweep_curve(c, a, b, j, T, tol, fit_error, helical);
         out.insert(out.end(), part.begin(), part.end());
         a = b;
       }
@@ -575,12 +583,83 @@ std::vector<TopoDS_Face> sweep_curve(const Handle(Geom_Curve)& c, double first, 
     }
     return out;
   }
-  // Helical: each piece fitted to tolerance on a grid of exact points T(q) c(s). (Copies of the
-  // first piece carried by the screw would save the fits, but OCCT's mesher leaves their
-  // triangulation open and the verdict falls back to the slow classifier.)
-  for (int k = 0; k < pieces; ++k)
-    helical_piece(c, first, last, j, T * k / pieces, T * (k + 1) / pieces, tol, 0, out, fit_error);
+  // Helical: each piece a tensor-product spline of the curve's poles' helices, or fitted to
+  // tolerance on a grid of exact points T(q) c(s). (Copies of the first piece carried by the screw
+  // would save the work, but OCCT's mesher leaves their triangulation open and the verdict falls
+  // back to the slow classifier.)
+  for (int k = 0; k < pieces; ++k) {
+    const double q0 = T * k / pieces, q1 = T * (k + 1) / pieces;
+    double err = 0;
+    const Handle(Geom_BSplineSurface) s =
+        helical == HelicalFaces::Spline ? helical_spline_surface(c, first, last, j, q0, q1, tol, &err) : nullptr;
+    if (!s.IsNull() && err <= tol) {
+      *fit_error = std::max(*fit_error, err);
+      double a0, a1, b0, b1;
+      s->Bounds(a0, a1, b0, b1);
+      out.push_back(make_face(s, a0, a1, b0, b1, tol));
+      continue;
+    }
+    helical_piece(c, first, last, j, q0, q1, tol, 0, out, fit_error);
+  }
   return out;
+}
+
+Handle(Geom_BSplineSurface) helical_spline_surface(const Handle(Geom_Curve)& c, double s0, double s1,
+                                                   const ScrewJoint& j, double q0, double q1, double tol,
+                                                   double* err) {
+  Handle(Geom_Curve) basis = c;
+  while (const Handle(Geom_TrimmedCurve) tc = Handle(Geom_TrimmedCurve)::DownCast(basis)) basis = tc->BasisCurve();
+  if (!basis->IsKind(STANDARD_TYPE(Geom_Line)) && !basis->IsKind(STANDARD_TYPE(Geom_Circle)) &&
+      !basis->IsKind(STANDARD_TYPE(Geom_Ellipse)) && !basis->IsKind(STANDARD_TYPE(Geom_BSplineCurve)) &&
+      !basis->IsKind(STANDARD_TYPE(Geom_BezierCurve)))
+    return nullptr;
+  const Handle(Geom_BSplineCurve) b = GeomConvert::CurveToBSplineCurve(new Geom_TrimmedCurve(basis, s0, s1));
+  if (b.IsNull()) return nullptr;
+  if (b->IsPeriodic()) b->SetNotPeriodic();
+  // each pole split along the axis and across it, the across part's quarter turn ahead beside it
+  const Eigen::Vector3d p = j.point, d = j.direction;
+  const int nu = b->NbPoles();
+  std::vector<Eigen::Vector3d> along(nu), across(nu), ahead(nu);
+  double reach = 0;
+  for (int i = 0; i < nu; ++i) {
+    const Eigen::Vector3d y = to_eigen(b->Pole(i + 1)) - p;
+    along[i] = p + d * y.dot(d);
+    across[i] = y - d * y.dot(d);
+    ahead[i] = d.cross(across[i]);
+    reach = std::max(reach, across[i].norm());
+  }
+  if (reach <= 0) return nullptr;
+  const TrigBezier trig = trig_bezier(q0, q1, Settings::helical_spline_share * tol / reach);
+  const int nv = int(trig.cos.size());
+  TColgp_Array2OfPnt poles(1, nu, 1, nv);
+  TColStd_Array2OfReal weights(1, nu, 1, nv);
+  for (int i = 0; i < nu; ++i)
+    for (int k = 0; k < nv; ++k) {
+      const double q = q0 + (q1 - q0) * k / (nv - 1);  // (q itself is linear in the Bernstein basis)
+      poles.SetValue(i + 1, k + 1,
+                     to_pnt(along[i] + trig.cos[k] * across[i] + trig.sin[k] * ahead[i] + d * (j.pitch * q)));
+      weights.SetValue(i + 1, k + 1, b->Weight(i + 1));
+    }
+  TColStd_Array1OfReal uknots(1, b->NbKnots()), vknots(1, 2);
+  TColStd_Array1OfInteger umults(1, b->NbKnots()), vmults(1, 2);
+  b->Knots(uknots);
+  b->Multiplicities(umults);
+  vknots.SetValue(1, q0), vknots.SetValue(2, q1);
+  vmults.SetValue(1, nv), vmults.SetValue(2, nv);
+  const Handle(Geom_BSplineSurface) s =
+      new Geom_BSplineSurface(poles, weights, uknots, vknots, umults, vmults, b->Degree(), nv - 1, false, false);
+  // the bound, and what a grid of exact points measures (which also holds the construction to it)
+  double measured = 0;
+  const int n = 8;
+  for (int a = 0; a <= n; ++a)
+    for (int k = 0; k <= n; ++k) {
+      const double u = b->FirstParameter() + (b->LastParameter() - b->FirstParameter()) * a / n;
+      const double q = q0 + (q1 - q0) * k / n;
+      const gp_Pnt exact = to_pnt(j.transform(q) * to_eigen(b->Value(u)));
+      measured = std::max(measured, s->Value(u, q).Distance(exact));
+    }
+  *err = std::max(trig.error * reach, measured);
+  return s;
 }
 
 Handle(Geom_BSplineSurface) fit_grid_surface(const std::function<gp_Pnt(double, double)>& exact, double tol,

@@ -95,6 +95,9 @@ struct Settings {
   static constexpr double helical_fit_approx = 0.05;
   /// How many times a span of the curve that no grid fits to the tolerance is halved.
   static constexpr int helical_fit_splits = 4;
+  /// The share of a face's tolerance that the polynomial helices of a tensor-product helical face
+  /// may stray from the exact sweep (sweep_curve).
+  static constexpr double helical_spline_share = 0.01;
 
   // --- building a stage from the arrangement of its candidate faces
   /// A stage whose arrangement of the candidates left after pruning fails its checks is built
