@@ -7,15 +7,10 @@
 #include <sstream>
 
 #include "sweep/error.hpp"
+#include "sweep/point_text.hpp"
 
 namespace sweep {
 namespace {
-
-std::string point_text(const Eigen::Vector3d& p) {
-  std::ostringstream os;
-  os << "(" << p.x() << ", " << p.y() << ", " << p.z() << ")";
-  return os.str();
-}
 
 /// The next token that is not a comment ('#' to the end of the line).
 bool next_token(std::istream& in, std::string& token) {

@@ -57,7 +57,7 @@ TriangleMesh read_mesh(const std::string& path) {
 }  // namespace
 
 TopoDS_Shape mesh_solid(const EntitySpec& e) {
-  TriangleMesh mesh = merged_vertices(read_mesh(e.file), 1e-12);
+  TriangleMesh mesh = merged_vertices(read_mesh(e.file), Settings::mesh_vertex_merge);
   for (auto& p : mesh.vertices) p *= e.scale;
   check_closed_oriented(mesh, kPointer);
   check_not_crossing_itself(mesh, kPointer);
@@ -86,7 +86,7 @@ TopoDS_Shape mesh_solid(const EntitySpec& e) {
   // coplanar neighbours as one face, collinear edges as one
   ShapeUpgrade_UnifySameDomain unify(make.Solid(), true, true, false);
   unify.SetLinearTolerance(Settings::resolution * size);
-  unify.SetAngularTolerance(1e-9);
+  unify.SetAngularTolerance(Settings::mesh_coplanar_angle);
   unify.Build();
   TopoDS_Shape solid = unify.Shape();
   GProp_GProps g;

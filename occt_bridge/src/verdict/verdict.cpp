@@ -30,7 +30,8 @@
 #include <cmath>
 #include <mutex>
 #include <random>
-#include <sstream>
+
+#include "sweep/point_text.hpp"
 
 namespace sweep::occt {
 
@@ -117,13 +118,6 @@ struct EdgeSegments {
     return false;
   }
 };
-
-std::string point_text(const Eigen::Vector3d& p) {
-  std::ostringstream os;
-  os.precision(9);
-  os << "(" << p.x() << ", " << p.y() << ", " << p.z() << ")";
-  return os.str();
-}
 
 }  // namespace
 
@@ -264,7 +258,7 @@ void judge_samples(const TopoDS_Shape& solid, const MeshIndex* mesh, const Eigen
         const int exact = ray_inside(*rays, p, tol);
         if (exact >= 0 && (exact == 1) == b) return;
         ++mismatches;
-        first.note(std::string("the point ") + point_text(p) +
+        first.note(std::string("the point ") + point_text(p, 9) +
                    (b ? " of the swept set lies outside the solid" : " lies in the solid but not in the swept set"));
       }
     };
@@ -370,7 +364,7 @@ void judge_probes(const TopoDS_Shape& solid, double tol, const std::vector<Probe
         const bool out_in_set = mo == 1, in_in_set = mi == 1;
         if (out_in_set != out_in_solid || in_in_set != in_in_solid) {
           ++bad;
-          first.note(std::string("the boundary of the solid at ") + point_text(pr.p) + " is not that of the swept set (" +
+          first.note(std::string("the boundary of the solid at ") + point_text(pr.p, 9) + " is not that of the swept set (" +
                      (out_in_set != out_in_solid ? (out_in_set ? "a point just outside it is swept"
                                                                : "a point outside it, in the solid, is not swept")
                                                  : (in_in_set ? "a point inside it, outside the solid, is swept"

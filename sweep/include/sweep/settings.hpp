@@ -34,6 +34,12 @@ struct Settings {
   /// Linear deflection of the triangulation behind a B-rep solid's distance bound (x the entity's
   /// size; the bound's slack is measured on it).
   static constexpr double brep_distance_deflection = 1e-4;
+  /// A mesh's vertices closer than this (x the mesh's size) are one vertex (an STL file repeats each
+  /// vertex in every triangle, rounded alike).
+  static constexpr double mesh_vertex_merge = 1e-12;
+  /// Neighbouring triangles of a mesh whose normals differ by less than this angle (radians) make one
+  /// planar face.
+  static constexpr double mesh_coplanar_angle = 1e-9;
 
   // --- building a stage's solid from its sweep boundary
   /// How far off a piece of the candidate boundary its two sides are tested (x size), and again at
