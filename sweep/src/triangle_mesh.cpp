@@ -1,6 +1,5 @@
 #include "sweep/triangle_mesh.hpp"
 
-#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -78,10 +77,14 @@ TriangleMesh read_off(std::istream& in, const std::string& pointer) {
   return m;
 }
 
-TriangleMesh merged_vertices(const TriangleMesh& mesh, double merge) {
+Eigen::AlignedBox3d bounding_box(const TriangleMesh& mesh) {
   Eigen::AlignedBox3d box;
   for (const auto& p : mesh.vertices) box.extend(p);
-  const double q = std::max(merge * box.sizes().maxCoeff(), 1e-300);
+  return box;
+}
+
+TriangleMesh merged_vertices(const TriangleMesh& mesh, double merge) {
+  const double q = std::max(merge * bounding_box(mesh).sizes().maxCoeff(), 1e-300);
   std::map<std::array<long long, 3>, int> index;
   std::vector<int> to(mesh.vertices.size());
   TriangleMesh out;
@@ -102,9 +105,7 @@ TriangleMesh merged_vertices(const TriangleMesh& mesh, double merge) {
 
 void check_closed_oriented(const TriangleMesh& mesh, const std::string& pointer) {
   if (mesh.triangles.size() < 4) throw InputError(pointer, "the mesh has fewer than 4 triangles: it bounds no solid");
-  Eigen::AlignedBox3d box;
-  for (const auto& p : mesh.vertices) box.extend(p);
-  const double size = box.sizes().maxCoeff();
+  const double size = bounding_box(mesh).sizes().maxCoeff();
   // each directed edge (a, b) and how many triangles run along it
   std::map<std::pair<int, int>, int> directed;
   for (std::size_t k = 0; k < mesh.triangles.size(); ++k) {

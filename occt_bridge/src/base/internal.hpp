@@ -289,6 +289,9 @@ std::vector<double> circle_torus_angles(const gp_Circ& c, const gp_Torus& tor, b
 /// Reads a STEP or BREP file into a shape. @throws InputError at `pointer` when unreadable.
 TopoDS_Shape read_shape_file(const std::string& path, const std::string& pointer);
 
+/// The extension of a file's path, lower case, without its dot ("" when it has none).
+std::string file_extension(const std::string& path);
+
 }  // namespace sweep::occt
 
 namespace sweep::occt {

@@ -280,8 +280,7 @@ TopoDS_Shape fitted_entity_shape(const EntitySpec& e, const TopoDS_Shape& sizing
 }
 
 TopoDS_Shape read_shape_file(const std::string& path, const std::string& pointer) {
-  std::string ext = path.substr(path.find_last_of('.') + 1);
-  std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
+  const std::string ext = file_extension(path);
   TopoDS_Shape s;
   quiet_occt();
   try {

@@ -16,7 +16,6 @@
 #include <TopoDS_Shell.hxx>
 #include <TopoDS_Solid.hxx>
 #include <algorithm>
-#include <cctype>
 #include <fstream>
 
 #include "base/internal.hpp"
@@ -29,15 +28,8 @@ namespace {
 
 const char* const kPointer = "/entity/file";
 
-std::string lower_extension(const std::string& path) {
-  const auto dot = path.find_last_of('.');
-  std::string ext = dot == std::string::npos ? "" : path.substr(dot);
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return char(std::tolower(ch)); });
-  return ext;
-}
-
 TriangleMesh read_mesh(const std::string& path) {
-  if (lower_extension(path) == ".off") {
+  if (file_extension(path) == "off") {
     std::ifstream in(path);
     if (!in) throw InputError(kPointer, "cannot read '" + path + "'");
     return read_off(in, kPointer);
@@ -63,9 +55,7 @@ TopoDS_Shape mesh_solid(const EntitySpec& e) {
   check_not_crossing_itself(mesh, kPointer);
   if (signed_volume(mesh) < 0)
     for (auto& t : mesh.triangles) std::swap(t[1], t[2]);
-  Eigen::AlignedBox3d box;
-  for (const auto& p : mesh.vertices) box.extend(p);
-  const double size = box.sizes().maxCoeff();
+  const double size = bounding_box(mesh).sizes().maxCoeff();
   // one planar face per triangle, sewn along the shared edges (exactly shared: no gap to close)
   BRepBuilderAPI_Sewing sewing(Settings::resolution * size);
   for (const auto& t : mesh.triangles) {

@@ -15,6 +15,7 @@
 #include <TopExp_Explorer.hxx>
 #include <TopoDS.hxx>
 #include <algorithm>
+#include <cctype>
 #include <array>
 #include <cstdio>
 #include <fstream>
@@ -25,15 +26,16 @@
 #include "sweep/error.hpp"
 
 namespace sweep::occt {
-namespace {
 
-std::string extension(const std::string& path) {
-  auto dot = path.find_last_of('.');
+std::string file_extension(const std::string& path) {
+  const auto dot = path.find_last_of('.');
   if (dot == std::string::npos) return "";
   std::string e = path.substr(dot + 1);
-  std::transform(e.begin(), e.end(), e.begin(), ::tolower);
+  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char ch) { return char(std::tolower(ch)); });
   return e;
 }
+
+namespace {
 
 void write_off(const TopoDS_Shape& s, const std::string& path) {
   std::map<std::array<double, 3>, int> index;
@@ -82,12 +84,12 @@ void quiet_occt() {
 }
 
 bool supported_output(const std::string& path) {
-  std::string e = extension(path);
+  std::string e = file_extension(path);
   return e == "step" || e == "stp" || e == "brep" || e == "stl" || e == "off";
 }
 
 void write_shape(const Shape& shape, const std::string& path, double mesh_tolerance) {
-  const std::string e = extension(path);
+  const std::string e = file_extension(path);
   if (!supported_output(path))
     throw InputError("-o", "unsupported output extension '." + e + "' (expected .step, .stp, .brep, .stl or .off)");
   const std::string tmp = path + ".partial";

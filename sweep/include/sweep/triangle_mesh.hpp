@@ -4,6 +4,7 @@
 /// the boundary of a solid (no degenerate triangle, every edge shared by exactly two triangles
 /// that run along it in opposite directions, no two triangles crossing).
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <array>
 #include <istream>
 #include <string>
@@ -15,6 +16,9 @@ struct TriangleMesh {
   std::vector<Eigen::Vector3d> vertices;
   std::vector<std::array<int, 3>> triangles;  ///< vertex indices, counter-clockwise seen from outside
 };
+
+/// The box of the mesh's vertices.
+Eigen::AlignedBox3d bounding_box(const TriangleMesh& mesh);
 
 /// Reads OFF text ("OFF", the counts, the vertices, then faces as "n i_1 ... i_n"; convex polygons
 /// are split into fans, a polygon that is not convex is refused). @throws InputError at `pointer`,
