@@ -184,3 +184,36 @@ TEST_CASE("Envelope: seed 001's circle sheets end exactly where the circle cross
   }
   CHECK(circles == 2);
 }
+
+TEST_CASE("Envelope: seed 001's cap sheets stay on the caps up to where their grazing chords vanish at the rim", "[variety]") {
+  // on the caps of the rolling cylinder the grazing line is the chord y = (4 / pi) sin(pi t), until
+  // it leaves the disk of radius 0.5 (t near 0.128 and 0.872): there the chord shrinks like a square
+  // root of the time left, faster than the rows of the track say between their instants
+  const EntityPtr cyl = entity_of(R"({"kind": "cylinder", "base": [0, 0, -1], "axis": [0, 0, 1], "radius": 0.5, "height": 2})");
+  REQUIRE(cyl);
+  const Expr tr[3] = {texpr("0"), texpr("4*t"), texpr("0")};
+  auto motion = std::make_shared<const PathMotion>(0, 1, tr, std::vector<PathRotation>{{{texpr("1"), texpr("0"), texpr("0")}, texpr("pi*t")}});
+  int sheets = 0;
+  for (std::size_t k = 1; k < cyl->faces().size(); ++k) {
+    const PatchPtr face = cyl->faces()[k];
+    for (const GrazingTrack& track : grazing_family(*face, *motion).tracks) {
+      // (as candidate_patches: slivers of the range between two events left out)
+      if (track.t.size() < 2 || !(track.t.back() - track.t.front() > Settings::grazing_sliver)) continue;
+      ++sheets;
+      const PatchPtr sheet = envelope_patch(face, motion, track, "sheet");
+      double outside = 0, off_chord = 0;
+      for (int j = 0; j <= 2000; ++j) {
+        const double t = track.t.front() + (track.t.back() - track.t.front()) * j / 2000;
+        for (int i = 0; i <= 24; ++i) {
+          const Vector3d y = motion->transform(t).inverse() * sheet->eval(i / 24.0, t).x;
+          outside = std::max({outside, std::hypot(y.x(), y.y()) - 0.5, std::abs(std::abs(y.z()) - 1)});
+          off_chord = std::max(off_chord, std::abs(std::abs(y.y()) - 4 / M_PI * std::sin(M_PI * t)));
+        }
+      }
+      INFO("a sheet of face " << k << " over t in [" << track.t.front() << ", " << track.t.back() << "]");
+      CHECK(outside < 1e-10);
+      CHECK(off_chord < 1e-10);
+    }
+  }
+  CHECK(sheets == 4);
+}

@@ -38,14 +38,38 @@ class Sheet {
   };
 
   /// The body point of the sheet at (s, t): the root of the grazing function at t on the line from
-  /// the interpolated point across the interpolated arc. Near an open arc's end on a side of the domain
-  /// the line turns smoothly to run along the side (over the first of the m_ intervals), so the end
-  /// stays on the side and the map stays smooth. The derivatives are those of the root as the
-  /// interpolated point moves and g changes with t (the line's own turning, times the root's tiny
-  /// distance from the interpolated point, left out).
+  /// the interpolated point across the interpolated arc. An open arc's ends are found first, and the
+  /// interpolated arc is moved to run between them (by the ends' offsets, blended linearly in s): the
+  /// rows are interpolated in t, and where an arc shrinks fast (as the square root of the time left
+  /// before it vanishes on a side) the interpolated arc overshoots its ends, and its roots then lie
+  /// on the grazing curve's continuation outside the face.
   Jet at(double s, double t) const {
     const PoseJet pose = motion_->pose(t);
     Jet guess = interpolated(s, t);
+    if (!closed_ && s > 0 && s < 1) {
+      const Jet g0 = interpolated(0, t), g1 = interpolated(1, t);
+      const Jet e0 = root_of(0, t, g0, pose), e1 = root_of(1, t, g1, pose);
+      guess.x += (1 - s) * (e0.x - g0.x) + s * (e1.x - g1.x);
+      guess.xs += (e1.x - g1.x) - (e0.x - g0.x);
+      guess.xt += (1 - s) * (e0.xt - g0.xt) + s * (e1.xt - g1.xt);
+    }
+    return root_of(s, t, guess, pose);
+  }
+
+  const PatchPtr& face() const { return face_; }
+  const StageMotion& motion() const { return *motion_; }
+  const Vector2d& period() const { return period_; }
+  bool closed() const { return closed_; }
+
+ private:
+
+  /// The root of the grazing function at the pose on the line from `guess` (the sheet's point at s
+  /// before Newton) across the arc. Near an open arc's end on a side of the domain the line turns
+  /// smoothly to run along the side (over the first of the m_ intervals), so the end stays on the
+  /// side and the map stays smooth. The derivatives are those of the root as the guess moves and g
+  /// changes with t (the line's own turning, times the root's tiny distance from the guess, left
+  /// out).
+  Jet root_of(double s, double t, const Jet& guess, const PoseJet& pose) const {
     // across the interpolated arc (where two arcs cross, the gradient vanishes and turns with the
     // point, so it would not say which arc to follow); along the gradient where the arc has no length
     Vector2d dir(-guess.xs.y(), guess.xs.x());
@@ -65,8 +89,8 @@ class Sheet {
     Jet out;
     // the end of an arc at a crossing is the saddle of g there: across the arc, g vanishes along
     // the other arc too, so no root on the line says where the end is
-    const bool at_crossing =
-        !closed_ && (s <= 0 || s >= 1) && ends_at_crossing(s <= 0.5 ? 0 : 1, guess.x, interpolated(0.5, t).x, pose);
+    const bool at_crossing = !closed_ && (s <= 0 || s >= 1) &&
+                             ends_at_crossing(s <= 0.5 ? 0 : 1, guess.x, interpolated(0.5, t).x, pose);
     out.x = at_crossing ? onto_saddle(guess.x, pose) : onto_line(guess.x, dir, pose);
     const Vector2d grad = gradient(out.x, pose), w = wrapped_parameters(*face_, out.x, period_);
     const double across = grad.dot(dir);
@@ -75,13 +99,6 @@ class Sheet {
     out.xt = guess.xt - (grad.dot(guess.xt) + grazing_rate(*face_, pose, w.x(), w.y())) / across * dir;
     return out;
   }
-
-  const PatchPtr& face() const { return face_; }
-  const StageMotion& motion() const { return *motion_; }
-  const Vector2d& period() const { return period_; }
-  bool closed() const { return closed_; }
-
- private:
   double g(const Vector2d& x, const PoseJet& pose) const {
     const Vector2d w = wrapped_parameters(*face_, x, period_);
     return grazing_value(*face_, pose, w.x(), w.y());
