@@ -29,8 +29,16 @@ std::vector<double> event_times(const GrazingFamily& f) {
   return t;
 }
 
-/// Every track's instants are increasing, lie between the range's ends and events, and its arcs
-/// are as many as its instants.
+/// Whether an arc is a single point (where an arc appears from or vanishes into a side).
+bool is_point(const std::vector<Vector2d>& arc) {
+  for (const Vector2d& x : arc)
+    if (x != arc.front()) return false;
+  return true;
+}
+
+/// Every track's instants are increasing, lie between the range's ends and events (an end where
+/// the arc is a point of a side aside: the traced events are where the grid first or last sees the
+/// arc), and its arcs are as many as its instants.
 void check_tracks_well_formed(const GrazingFamily& f, double lo, double hi) {
   for (const GrazingTrack& tr : f.tracks) {
     REQUIRE(tr.t.size() == tr.arcs.size());
@@ -38,7 +46,9 @@ void check_tracks_well_formed(const GrazingFamily& f, double lo, double hi) {
     CHECK(tr.t.front() >= lo);
     CHECK(tr.t.back() <= hi);
     for (std::size_t k = 1; k < tr.t.size(); ++k) CHECK(tr.t[k] > tr.t[k - 1]);
-    for (const GrazingEvent& e : f.events) CHECK((tr.t.back() <= e.before || tr.t.front() >= e.after));
+    const std::size_t first = is_point(tr.arcs.front()) && tr.t.size() > 1 ? 1 : 0;
+    const std::size_t last = is_point(tr.arcs.back()) && tr.t.size() > 1 ? tr.t.size() - 2 : tr.t.size() - 1;
+    for (const GrazingEvent& e : f.events) CHECK((tr.t[last] <= e.before || tr.t[first] >= e.after));
   }
 }
 
@@ -118,14 +128,26 @@ TEST_CASE("Grazing family: seed 001's rolling cylinder changes where the circle 
     // it touches the rim: 0.5 (1 - cos 0.0515) = 6.6e-4 below the rim, at 4 cos(pi t) = 3.7 a unit t)
     CHECK(inner[0] == Approx(line_out).margin(2e-4));
     CHECK(inner[1] == Approx(1 - line_out).margin(2e-4));
+    int points = 0;
     for (const GrazingTrack& t : cap.tracks) {
-      const bool early = t.t.back() <= line_out, late = t.t.front() >= 1 - line_out;
+      const bool early = t.t.back() <= line_out + 1e-12, late = t.t.front() >= 1 - line_out - 1e-12;
       CHECK((early || late));
+      // the line leaves the cap, and comes back, at the rim's point (0, 0.5): tracks end there
+      for (const bool front : {true, false}) {
+        const std::vector<Vector2d>& arc = front ? t.arcs.front() : t.arcs.back();
+        if (t.arcs.size() < 2 || !is_point(arc)) continue;
+        ++points;
+        CHECK(std::abs(std::min(std::abs((front ? t.t.front() : t.t.back()) - line_out),
+                                std::abs((front ? t.t.front() : t.t.back()) - (1 - line_out)))) < 1e-12);
+        const Vector3d x = cyl->faces()[k]->eval(arc.front().x(), arc.front().y()).x;
+        CHECK((x.head<2>() - Eigen::Vector2d(0, 0.5)).norm() < 1e-9);
+      }
       for (std::size_t i = 0; i < t.t.size(); ++i)
         for (const Vector2d& s : t.arcs[i])
           // (the centre is a pole, where the set is read 1e-7 of the radius inside)
           if (s.y() > 1e-6) CHECK(std::abs(cyl->faces()[k]->eval(s.x(), s.y()).x.y() - 4 * std::sin(M_PI * t.t[i]) / M_PI) < 1e-9);
     }
+    CHECK(points == 2);
   }
 }
 

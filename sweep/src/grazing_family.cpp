@@ -4,6 +4,7 @@
 #include <cmath>
 #include <iterator>
 #include <limits>
+#include <optional>
 #include <tuple>
 
 #include "sweep/settings.hpp"
@@ -271,6 +272,100 @@ void collect_side_spans(const std::vector<Instant>& seq, GrazingFamily& out) {
   }
 }
 
+
+/// The parameters of the point of side `side` at w along it.
+Vector2d side_parameters(const Patch& face, int side, double w) {
+  switch (side) {
+    case 0: return {w, face.lo(1)};
+    case 1: return {face.hi(0), w};
+    case 2: return {w, face.hi(1)};
+    default: return {face.lo(0), w};
+  }
+}
+
+/// The parameter along side `side` of a point on it.
+double along_side(int side, const Vector2d& x) { return side == 0 || side == 2 ? x.x() : x.y(); }
+
+/// Where an arc with both ends on one side of the domain shrinks to a point of that side (it
+/// vanishes there, or appears from it read backwards): the double root of g along the side, g = 0
+/// and dg/dw = 0 in (w, t), by Newton from `w0` at `t0`. Empty when Newton does not converge, or
+/// the side has no length (a pole), or the root is not a double one.
+std::optional<std::pair<double, double>> side_double_root(const Patch& face, const StageMotion& motion, int side,
+                                                          double w0, double t0) {
+  const double wlo = side == 0 || side == 2 ? face.lo(0) : face.lo(1), whi = side == 0 || side == 2 ? face.hi(0) : face.hi(1);
+  const double hw = 1e-5 * (whi - wlo);
+  auto G = [&](double w, const PoseJet& P) {
+    const Vector2d x = side_parameters(face, side, w);
+    return grazing_value(face, P, x.x(), x.y());
+  };
+  auto Gt = [&](double w, const PoseJet& P) {
+    const Vector2d x = side_parameters(face, side, w);
+    return grazing_rate(face, P, x.x(), x.y());
+  };
+  double w = w0, t = t0, scale = 0;
+  for (int it = 0; it < 50; ++it) {
+    const PoseJet P = motion.pose(t);
+    const double g = G(w, P), gp = G(w + hw, P), gm = G(w - hw, P);
+    const double gw = (gp - gm) / (2 * hw), gww = (gp - 2 * g + gm) / (hw * hw);
+    const double gt = Gt(w, P), gwt = (Gt(w + hw, P) - Gt(w - hw, P)) / (2 * hw);
+    scale = std::max({scale, std::abs(gt), std::abs(gww) * (whi - wlo)});
+    Eigen::Matrix2d J;
+    J << gw, gt, gww, gwt;
+    const Eigen::Vector2d F(g, gw);
+    if (!(std::abs(J.determinant()) > 0)) return std::nullopt;
+    const Eigen::Vector2d step = -J.inverse() * F;
+    if (!step.allFinite()) return std::nullopt;
+    w += std::clamp(step.x(), -0.1 * (whi - wlo), 0.1 * (whi - wlo));
+    t += step.y();
+    if (std::abs(step.x()) <= 1e-13 * (whi - wlo) && std::abs(step.y()) <= 1e-15 * (1 + std::abs(t))) {
+      const PoseJet Q = motion.pose(t);
+      const double gww_end = (G(w + hw, Q) - 2 * G(w, Q) + G(w - hw, Q)) / (hw * hw);
+      // a double root, of a function that does vary along the side (not a pole)
+      if (!(scale > 0) || !(std::abs(gww_end) * (whi - wlo) > 1e-6 * scale)) return std::nullopt;
+      return std::make_pair(w, t);
+    }
+  }
+  return std::nullopt;
+}
+
+/// Tracks whose arc, with both ends on one side, appears at their first instant or vanishes after
+/// their last one are carried to the instant where it is a point of that side. The traced sets see
+/// an arc only once it spans a node of the grid, and such an arc grows as the square root of the
+/// time since it appeared: the sheet would start (or end) short of the arc's point by up to a grid
+/// cell, with a gap the sweeps of the side's edge do not close.
+void exact_side_events(const Patch& face, const StageMotion& motion, GrazingFamily& f) {
+  const double lo = motion.lo(), hi = motion.hi(), reach = Settings::grazing_event_reach * (hi - lo);
+  for (GrazingTrack& tr : f.tracks) {
+    if (tr.closed || tr.t.size() < 2 || tr.end_sides[0] != tr.end_sides[1] || tr.end_sides[0] < 0 || tr.end_sides[0] > 3)
+      continue;
+    const int side = tr.end_sides[0];
+    for (const bool start : {true, false}) {
+      const double t_end = start ? tr.t.front() : tr.t.back();
+      const bool at_event = std::any_of(f.events.begin(), f.events.end(), [&](const GrazingEvent& e) {
+        return start ? e.change == GrazingChange::Appears && e.after == t_end
+                     : e.change == GrazingChange::Vanishes && e.before == t_end;
+      });
+      if (!at_event) continue;
+      const std::vector<Vector2d>& arc = start ? tr.arcs.front() : tr.arcs.back();
+      const double wa = along_side(side, arc.front()), wb = along_side(side, arc.back());
+      const auto root = side_double_root(face, motion, side, 0.5 * (wa + wb), t_end);
+      if (!root) continue;
+      const auto [w, t] = *root;
+      const bool inside = w > std::min(wa, wb) && w < std::max(wa, wb);
+      const bool before = start ? t < t_end && t >= std::max(lo, t_end - reach) : t > t_end && t <= std::min(hi, t_end + reach);
+      if (!inside || !before) continue;
+      const Vector2d x = side_parameters(face, side, w);
+      if (start) {
+        tr.t.insert(tr.t.begin(), t);
+        tr.arcs.insert(tr.arcs.begin(), std::vector<Vector2d>{x, x});
+      } else {
+        tr.t.push_back(t);
+        tr.arcs.push_back(std::vector<Vector2d>{x, x});
+      }
+    }
+  }
+}
+
 }  // namespace
 
 GrazingFamily grazing_family(const Patch& face, const StageMotion& motion, int samples, int n) {
@@ -288,6 +383,7 @@ GrazingFamily grazing_family(const Patch& face, const StageMotion& motion, int s
     }
   }
   for (auto& tr : span) out.tracks.push_back(std::move(tr));
+  exact_side_events(face, motion, out);
   collect_side_spans(seq, out);
   return out;
 }

@@ -81,6 +81,10 @@ struct Settings {
   /// Tracks and grazing sides over less than this fraction of the range (slivers between two
   /// events) make no candidate.
   static constexpr double grazing_sliver = 1e-6;
+  /// How far (x the range) an arc that appears from or vanishes into a point of a side of its face
+  /// is followed past the traced instants to that point (grazing_family: the traced sets see such
+  /// an arc only once it spans a node of their grid).
+  static constexpr double grazing_event_reach = 0.05;
   /// The longest Newton step that puts a point of an envelope sheet on its grazing arc (x the
   /// face's parameter domain).
   static constexpr double envelope_newton_step = 0.01;
