@@ -269,6 +269,13 @@ TopoDS_Shape union_of_cells(const std::vector<TopoDS_Solid>& kept) {
 void arrange(const std::vector<TopoDS_Face>& faces, double fuzzy, BOPAlgo_MakerVolume& mv) {
   TopTools_ListOfShape args;
   for (const auto& f : faces) args.Append(f);
+  if (const char* dump = std::getenv("SWEEP_DUMP_CANDIDATES")) {  // diagnostics: the arrangement's input (written first: OCCT may run on)
+    TopoDS_Compound comp;
+    BRep_Builder bb;
+    bb.MakeCompound(comp);
+    for (const auto& f : faces) bb.Add(comp, f);
+    BRepTools::Write(comp, dump);
+  }
   for (double factor : {1.0, 0.1, 10.0}) {
     mv.Clear();
     mv.SetArguments(args);
@@ -278,13 +285,6 @@ void arrange(const std::vector<TopoDS_Face>& faces, double fuzzy, BOPAlgo_MakerV
     mv.Perform(stop_range());
     check_stop();
     if (!mv.HasErrors() && TopExp_Explorer(mv.Shape(), TopAbs_SOLID).More()) break;
-  }
-  if (const char* dump = std::getenv("SWEEP_DUMP_CANDIDATES")) {  // diagnostics: the arrangement's input
-    TopoDS_Compound comp;
-    BRep_Builder bb;
-    bb.MakeCompound(comp);
-    for (const auto& f : faces) bb.Add(comp, f);
-    BRepTools::Write(comp, dump);
   }
 }
 
