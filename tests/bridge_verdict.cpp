@@ -6,6 +6,8 @@
 #include <BRepPrimAPI_MakeCylinder.hxx>
 #include <BRepPrimAPI_MakeSphere.hxx>
 #include <BRepGProp.hxx>
+#include <BRepBndLib.hxx>
+#include <Bnd_Box.hxx>
 #include <GProp_GProps.hxx>
 #include <gp_Ax1.hxx>
 #include <gp_Ax2.hxx>
@@ -17,6 +19,9 @@
 #include "sweep/spec.hpp"
 #include "run/run_steps.hpp"
 #include "verdict/verdict.hpp"
+#include "base/internal.hpp"
+#include "occt_bridge/sweeper.hpp"
+#include "util/random_one_joint.hpp"
 
 using namespace sweep;
 using namespace sweep::occt;
@@ -169,4 +174,79 @@ TEST_CASE("Verdict: a surface under one joint, its right solid and two wrong one
   const VerdictResult moved_out = judge_extruded_shell(BRepAlgoAPI_Fuse(right, ring).Shape());
   CHECK_FALSE(moved_out.ok());
   CHECK(moved_out.probe_mismatches > 0);
+}
+
+namespace {
+
+/// Case 56 of the CI table (seed 41): a cylinder turned 1.3 turns about an axis beside it. Its
+/// solid has small faces whose triangles cover a fifth more or less than their area.
+struct TurnedCylinder {
+  Spec spec;
+  occt::RunResult run;
+  double size = 0, tol = 0;
+  Eigen::AlignedBox3d box;
+};
+
+const TurnedCylinder& turned_cylinder() {
+  static const TurnedCylinder c = [] {
+    TurnedCylinder t;
+    const testing::RandomCase rc = testing::random_one_joint_case(41, 56);
+    REQUIRE(rc.name == "cylinder_revolute_56");
+    t.spec = parse_spec(rc.spec, ".");
+    t.run = occt::run_sweep(t.spec);
+    REQUIRE(t.run.report.ok());
+    REQUIRE(t.run.shape);
+    Bnd_Box b;
+    BRepBndLib::Add(t.run.shape->shape, b);
+    double x0, y0, z0, x1, y1, z1;
+    b.Get(x0, y0, z0, x1, y1, z1);
+    t.box = Eigen::AlignedBox3d(Eigen::Vector3d(x0, y0, z0), Eigen::Vector3d(x1, y1, z1));
+    t.size = t.box.sizes().norm();
+    t.tol = 1e-6 * t.size;
+    t.box = Eigen::AlignedBox3d(t.box.min().array() - 0.05 * t.size, t.box.max().array() + 0.05 * t.size);
+    return t;
+  }();
+  return c;
+}
+
+VerdictResult judge_turned_cylinder(const TopoDS_Shape& s) {
+  const TurnedCylinder& c = turned_cylinder();
+  const Settings settings;
+  const occt::RunEntity entity(c.spec.entity);
+  double fit_err = 0;
+  const TopoDS_Shape raw = entity_shape(c.spec.entity, 0.01 * c.tol, &fit_err);
+  const IndependentMembership member = independent_membership(entity, c.spec.motion.motion, raw, c.size, settings);
+  REQUIRE(member.test);
+  return judge_solid(s, c.box, member.test, c.tol, c.size, settings);
+}
+
+}  // namespace
+
+TEST_CASE("Verdict: rays against the triangles keep off faces the triangles do not cover", "[verdict]") {
+  // the right solid: judged against its triangles away from those faces (OCCT's classifier took
+  // every sample before, three quarters of the run), and it agrees with the table's reference
+  const TurnedCylinder& c = turned_cylinder();
+  CHECK(c.run.report.volume_brep == Approx(8.09598181849647).epsilon(1e-7));
+  INFO(c.run.report.verdict_classifier);
+  CHECK(c.run.report.verdict_classifier.find("rays kept off") != std::string::npos);
+  const VerdictResult right = judge_turned_cylinder(c.run.shape->shape);
+  INFO(right.classifier << "; " << right.first_mismatch);
+  CHECK(right.ok());
+  CHECK(right.classifier.find("rays kept off") != std::string::npos);
+  // wrong solids on the same path: a slab of the box cut off, and a ball of a tenth of the size
+  // added at the far corner of the solid's box
+  const Eigen::Vector3d lo = c.box.min(), hi = c.box.max(), d = hi - lo;
+  const TopoDS_Shape slab =
+      BRepPrimAPI_MakeBox(gp_Pnt(lo.x() + 0.6 * d.x(), lo.y() - 1, lo.z() - 1), gp_Pnt(hi.x() + 1, hi.y() + 1, hi.z() + 1)).Shape();
+  const TopoDS_Shape cut = BRepAlgoAPI_Cut(c.run.shape->shape, slab).Shape();
+  GProp_GProps g;
+  BRepGProp::VolumeProperties(cut, g);
+  REQUIRE(g.Mass() < c.run.report.volume_brep - 0.02 * c.box.volume());
+  const VerdictResult without_slab = judge_turned_cylinder(cut);
+  INFO(without_slab.classifier);
+  CHECK_FALSE(without_slab.ok());
+  CHECK(without_slab.mismatches > 0);
+  const TopoDS_Shape ball = BRepPrimAPI_MakeSphere(gp_Pnt(lo.x() + 0.1 * d.x(), lo.y() + 0.1 * d.y(), lo.z() + 0.1 * d.z()), 0.1 * c.size).Shape();
+  const VerdictResult with_ball = judge_turned_cylinder(BRepAlgoAPI_Fuse(c.run.shape->shape, ball).Shape());
+  CHECK_FALSE(with_ball.ok());
 }

@@ -205,3 +205,36 @@ TEST_CASE("Mesh index: inside and distance for a closed cube") {
   CHECK(mesh.distance(Vector3d(2, 2, 0.5)) == Approx(std::sqrt(2.0)));
   CHECK(mesh.distance_below(Vector3d(2, 2, 0.5), 0.5) >= 0.5);
 }
+
+TEST_CASE("Mesh index: rays that avoid a region whose triangles are wrong") {
+  // the unit cube without its top face's triangles: rays through the hole miss a crossing
+  std::vector<Triangle> tris;
+  const Vector3d c[8] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  const int quads[5][4] = {{0, 3, 2, 1}, {0, 1, 5, 4}, {2, 3, 7, 6}, {1, 2, 6, 5}, {0, 4, 7, 3}};
+  for (const auto& q : quads) {
+    tris.push_back({c[q[0]], c[q[1]], c[q[2]]});
+    tris.push_back({c[q[0]], c[q[2]], c[q[3]]});
+  }
+  const MeshIndex mesh(tris);
+  const Vector3d centre(0.5, 0.5, 0.5), high(0.5, 0.5, 0.9);
+  CHECK_FALSE(mesh.inside(high));  // two of the first three rays leave through the hole
+  const std::vector<Eigen::AlignedBox3d> top{Eigen::AlignedBox3d(Vector3d(-0.01, -0.01, 0.99), Vector3d(1.01, 1.01, 1.01))};
+  CHECK(mesh.inside_avoiding(high, top) == 1);
+  CHECK(mesh.inside_avoiding(centre, top) == 1);
+  CHECK(mesh.inside_avoiding(Vector3d(0.9, 0.1, 0.05), top) == 1);
+  CHECK(mesh.inside_avoiding(Vector3d(0.5, 0.5, 1.0), top) == -1);  // in the region
+  CHECK(mesh.inside_avoiding(Vector3d(2, 0.5, 0.5), top) == 0);
+  CHECK(mesh.inside_avoiding(Vector3d(0.5, 0.5, 1.5), top) == 0);
+  CHECK(mesh.inside_avoiding(Vector3d(0.5, 0.5, -0.5), top) == 0);
+  // no region: the plain test's answers
+  CHECK(mesh.inside_avoiding(Vector3d(0.9, 0.1, 0.05), {}) == int(mesh.inside(Vector3d(0.9, 0.1, 0.05))));
+  // a region around the point's every ray: undecided
+  std::vector<Eigen::AlignedBox3d> around;
+  for (int axis = 0; axis < 3; ++axis)
+    for (double side : {-1.0, 1.0}) {
+      Eigen::Vector3d lo(-2, -2, -2), hi(3, 3, 3);
+      (side < 0 ? hi : lo)[axis] = side < 0 ? -1.5 : 2.5;
+      around.push_back(Eigen::AlignedBox3d(lo, hi));
+    }
+  CHECK(mesh.inside_avoiding(centre, around) == -1);
+}

@@ -1,6 +1,7 @@
 #include "sweep/mesh_index.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -147,24 +148,56 @@ bool MeshIndex::crossings(const Vector3d& p, const Vector3d& d, int* count) cons
   return true;
 }
 
+namespace {
+
+/// Ray directions away from the axes and from each other: the first seven are the plain test's.
+const std::array<Vector3d, 14>& ray_directions() {
+  static const std::array<Vector3d, 14> dirs = [] {
+    std::array<Vector3d, 14> d = {Vector3d(0.5773, 0.5581, 0.5958),   Vector3d(-0.6312, 0.4137, -0.6561),
+                                  Vector3d(0.2113, -0.9417, 0.2619),  Vector3d(-0.3319, -0.2745, 0.9024),
+                                  Vector3d(0.8812, 0.1711, -0.4407),  Vector3d(-0.1517, 0.7709, 0.6187),
+                                  Vector3d(0.4409, -0.3377, -0.8316), Vector3d(-0.9137, -0.3109, 0.2617),
+                                  Vector3d(0.1391, 0.9236, -0.3571),  Vector3d(-0.5127, -0.7384, -0.4381),
+                                  Vector3d(0.7262, -0.6129, 0.3113),  Vector3d(-0.2708, 0.2193, -0.9373),
+                                  Vector3d(0.3607, 0.3119, 0.8791),   Vector3d(-0.7713, 0.6219, 0.1356)};
+    for (auto& v : d) v.normalize();
+    return d;
+  }();
+  return dirs;
+}
+
+}  // namespace
+
 bool MeshIndex::inside(const Vector3d& p) const {
   if (tris_.empty() || !box_.contains(p)) return false;
-  static const Vector3d dirs[] = {Vector3d(0.5773, 0.5581, 0.5958).normalized(),
-                                  Vector3d(-0.6312, 0.4137, -0.6561).normalized(),
-                                  Vector3d(0.2113, -0.9417, 0.2619).normalized(),
-                                  Vector3d(-0.3319, -0.2745, 0.9024).normalized(),
-                                  Vector3d(0.8812, 0.1711, -0.4407).normalized(),
-                                  Vector3d(-0.1517, 0.7709, 0.6187).normalized(),
-                                  Vector3d(0.4409, -0.3377, -0.8316).normalized()};
   int votes_in = 0, votes = 0;
-  for (const auto& d : dirs) {
+  for (std::size_t k = 0; k < 7; ++k) {
+    int n = 0;
+    if (!crossings(p, ray_directions()[k], &n)) continue;
+    ++votes;
+    votes_in += n % 2;
+    if (votes == 3) break;
+  }
+  return votes > 0 && 2 * votes_in > votes;
+}
+
+int MeshIndex::inside_avoiding(const Vector3d& p, const std::vector<Eigen::AlignedBox3d>& avoid) const {
+  for (const auto& b : avoid)
+    if (b.contains(p)) return -1;
+  if (tris_.empty() || !box_.contains(p)) return 0;
+  int votes_in = 0, votes = 0;
+  for (const Vector3d& d : ray_directions()) {
+    const Vector3d inv(1.0 / d.x(), 1.0 / d.y(), 1.0 / d.z());
+    if (std::any_of(avoid.begin(), avoid.end(), [&](const Eigen::AlignedBox3d& b) { return ray_meets_box(b, p, inv); }))
+      continue;
     int n = 0;
     if (!crossings(p, d, &n)) continue;
     ++votes;
     votes_in += n % 2;
     if (votes == 3) break;
   }
-  return votes > 0 && 2 * votes_in > votes;
+  if (votes == 0) return -1;
+  return 2 * votes_in > votes ? 1 : 0;
 }
 
 double MeshIndex::distance_below(const Vector3d& p, double limit) const {

@@ -121,7 +121,8 @@ struct EdgeSegments {
 
 }  // namespace
 
-std::vector<Triangle> triangulate(const TopoDS_Shape& shape, double deflection, std::string* problem) {
+std::vector<Triangle> triangulate(const TopoDS_Shape& shape, double deflection, std::string* problem,
+                                  std::vector<std::pair<TopoDS_Face, std::string>>* uncovered) {
   BRepMesh_IncrementalMesh mesh(shape, deflection, false, 0.5, true);
   std::vector<Triangle> out;
   const std::vector<FaceMesh> faces = face_meshes(shape);
@@ -154,8 +155,14 @@ std::vector<Triangle> triangulate(const TopoDS_Shape& shape, double deflection, 
     // deflection, so a loss up to pi deflection^2 keeps every point of the face within two
     // deflections of the triangles, inside the band the samples leave out.
     const double exact = face_area(fm.face), loss = std::abs(fm.area - exact);
-    if (loss > 0.05 * std::abs(exact) + 1e-9 && loss > sliver_area)
-      *problem = "the triangulation of a face covers " + std::to_string(fm.area) + " of its area " + std::to_string(exact);
+    if (loss > 0.05 * std::abs(exact) + 1e-9 && loss > sliver_area) {
+      const std::string what =
+          "the triangulation of a face covers " + std::to_string(fm.area) + " of its area " + std::to_string(exact);
+      if (uncovered)
+        uncovered->push_back({fm.face, what});
+      else
+        *problem = what;
+    }
   }
   if (problem && problem->empty()) {
     // closed: every triangle side is shared by another triangle
@@ -210,34 +217,75 @@ class FirstMismatch {
   std::mutex mutex_;
 };
 
+/// Boxes that hold a face and its triangles with `margin` around them: the face's surface over its
+/// parameter box on 8 x 8 cells, each sampled at 5 x 5 points and widened by the longest step
+/// between neighbouring points (far more than the surface strays between them), and the triangles
+/// in groups of 16.
+std::vector<Eigen::AlignedBox3d> region_of(const TopoDS_Face& face, const std::vector<Triangle>& tris, double margin) {
+  std::vector<Eigen::AlignedBox3d> out;
+  double u0, u1, v0, v1;
+  BRepTools::UVBounds(face, u0, u1, v0, v1);
+  const BRepAdaptor_Surface S(face);
+  constexpr int cells = 8, n = 4;
+  for (int a = 0; a < cells; ++a)
+    for (int b = 0; b < cells; ++b) {
+      Eigen::AlignedBox3d box;
+      double step = 0;
+      Eigen::Vector3d grid[n + 1][n + 1];
+      for (int i = 0; i <= n; ++i)
+        for (int k = 0; k <= n; ++k) {
+          const double u = u0 + (u1 - u0) * (a + double(i) / n) / cells, v = v0 + (v1 - v0) * (b + double(k) / n) / cells;
+          grid[i][k] = to_eigen(S.Value(u, v));
+          box.extend(grid[i][k]);
+          if (i > 0) step = std::max(step, (grid[i][k] - grid[i - 1][k]).norm());
+          if (k > 0) step = std::max(step, (grid[i][k] - grid[i][k - 1]).norm());
+        }
+      out.push_back(Eigen::AlignedBox3d(box.min().array() - (margin + step), box.max().array() + (margin + step)));
+    }
+  for (std::size_t first = 0; first < tris.size(); first += 16) {
+    Eigen::AlignedBox3d box;
+    for (std::size_t k = first; k < std::min(tris.size(), first + 16); ++k) box.extend(tris[k].a), box.extend(tris[k].b), box.extend(tris[k].c);
+    out.push_back(Eigen::AlignedBox3d(box.min().array() - margin, box.max().array() + margin));
+  }
+  return out;
+}
+
 /// Uniform samples in the box, each classified against the triangulated solid (or, when `mesh` is
 /// null, by OCCT's classifier) and by the membership; samples within `band` of the triangulated
 /// boundary are left out. Where the two disagree, rays against the exact faces give the solid's
-/// side; a disagreement stands when they agree with the triangles or give no clear answer.
-void judge_samples(const TopoDS_Shape& solid, const MeshIndex* mesh, const Eigen::AlignedBox3d& box,
-                   const MemberTestMaker& member, double tol, double band, const Settings& settings,
-                   FirstMismatch& first, VerdictResult& r) {
+/// side; a disagreement stands when they agree with the triangles or give no clear answer. Rays
+/// against the triangles miss the boxes of `avoid` (faces whose triangles do not cover them); a
+/// sample no such ray decides is classified by OCCT's classifier (*exact counts them).
+void judge_samples(const TopoDS_Shape& solid, const MeshIndex* mesh, const std::vector<Eigen::AlignedBox3d>& avoid,
+                   const Eigen::AlignedBox3d& box, const MemberTestMaker& member, double tol, double band,
+                   const Settings& settings, FirstMismatch& first, VerdictResult& r, std::size_t* exact) {
   const std::size_t n = settings.verdict_samples;
   std::vector<Eigen::Vector3d> pts(n);
   std::mt19937_64 rng(settings.seed);
   std::uniform_real_distribution<double> uni(0.0, 1.0);
   for (auto& p : pts) p = box.min() + Eigen::Vector3d(uni(rng), uni(rng), uni(rng)).cwiseProduct(box.sizes());
-  std::atomic<std::size_t> near{0}, mismatches{0}, undecided{0};
+  std::atomic<std::size_t> near{0}, mismatches{0}, undecided{0}, by_classifier{0};
   parallel_for(n, [&]() -> std::function<void(std::size_t)> {
     const MemberTest in_set = member();
     auto cls = std::make_shared<BRepClass3d_SolidClassifier>();
-    if (!mesh) cls->Load(solid);
+    auto loaded = std::make_shared<bool>(false);
     auto rays = std::make_shared<std::vector<FaceHit>>();  // (set up at this thread's first disagreement)
-    return [&, in_set, cls, rays](std::size_t i) {
+    return [&, in_set, cls, loaded, rays](std::size_t i) {
       const Eigen::Vector3d& p = pts[i];
       bool a = false;
+      int by_mesh = -1;
       if (mesh) {
         if (mesh->distance_below(p, band) < band) {
           ++near;
           return;
         }
-        a = mesh->inside(p);
+        by_mesh = avoid.empty() ? int(mesh->inside(p)) : mesh->inside_avoiding(p, avoid);
+      }
+      if (by_mesh >= 0) {
+        a = by_mesh == 1;
       } else {
+        if (!*loaded) cls->Load(solid), *loaded = true;
+        ++by_classifier;
         cls->Perform(to_pnt(p), tol);
         if (cls->State() == TopAbs_ON) {
           ++near;
@@ -267,6 +315,7 @@ void judge_samples(const TopoDS_Shape& solid, const MeshIndex* mesh, const Eigen
   r.near_boundary = near;
   r.mismatches = mismatches;
   r.undecided = undecided;
+  if (exact) *exact = by_classifier;
 }
 
 struct Probe {
@@ -398,12 +447,22 @@ VerdictResult judge_solid(const TopoDS_Shape& solid, const Eigen::AlignedBox3d& 
   TopoDS_Shape meshed;
   std::string problem, first_problem;
   std::vector<Triangle> tris;
-  for (int attempt = 0; attempt < 4 && (attempt == 0 || !problem.empty()); ++attempt) {
+  // the first mesh whose only fault is faces its triangles do not cover: kept, with the regions
+  // of those faces, in case no mesh is right
+  const double band = tol + 3 * deflection;
+  std::vector<Triangle> partial_tris;
+  std::vector<Eigen::AlignedBox3d> partial_avoid;
+  std::string partial_what;
+  // (the finer meshes are not made when one with uncovered faces is at hand: they cost more than
+  // the classifier's share near those faces)
+  for (int attempt = 0; attempt < 4 && (attempt == 0 || !problem.empty()) && (attempt < 2 || partial_tris.empty());
+       ++attempt) {
     const bool divide = attempt % 2 == 1;
     r.classifier = std::string(attempt < 2 ? "the triangulation" : "a finer triangulation") +
                    (divide ? " (closed faces divided)" : "");
     if (!meshed.IsNull()) BRepTools::Clean(meshed);
     meshed = solid;
+    std::vector<std::pair<TopoDS_Face, std::string>> uncovered;
     try {
       OCC_CATCH_SIGNALS
       if (divide) {
@@ -412,7 +471,18 @@ VerdictResult judge_solid(const TopoDS_Shape& solid, const Eigen::AlignedBox3d& 
         divider.Perform();
         if (!divider.Result().IsNull()) meshed = divider.Result();
       }
-      tris = triangulate(meshed, (attempt < 2 ? 1.0 : 0.25) * deflection, &problem);
+      tris = triangulate(meshed, (attempt < 2 ? 1.0 : 0.25) * deflection, &problem, &uncovered);
+      if (problem.empty() && !uncovered.empty()) {
+        problem = uncovered.front().second;
+        if (partial_tris.empty()) {
+          partial_what = std::to_string(uncovered.size()) + " faces whose triangles do not cover them (" + problem + ")";
+          for (const FaceMesh& fm : face_meshes(meshed))
+            for (const auto& [face, what] : uncovered)
+              if (fm.face.IsSame(face))
+                for (const auto& b : region_of(face, fm.xyz, band)) partial_avoid.push_back(b);
+          partial_tris = tris;
+        }
+      }
     } catch (const Standard_Failure& f) {
       problem = std::string("OCCT failed to mesh it: ") + (f.GetMessageString() ? f.GetMessageString() : "");
       meshed = solid;
@@ -420,13 +490,22 @@ VerdictResult judge_solid(const TopoDS_Shape& solid, const Eigen::AlignedBox3d& 
     }
     if (attempt == 0) first_problem = problem;
   }
-  if (!problem.empty()) r.classifier = "OCCT's solid classifier (" + first_problem + "; " + problem + ")";
-  const bool by_mesh = problem.empty();
+  const bool partial = !problem.empty() && !partial_tris.empty();
+  if (partial) {
+    tris = std::move(partial_tris);
+    r.classifier = "the triangulation, rays kept off " + partial_what;
+  } else if (!problem.empty()) {
+    r.classifier = "OCCT's solid classifier (" + first_problem + "; " + problem + ")";
+    partial_avoid.clear();
+  }
+  const bool by_mesh = problem.empty() || partial;
   const MeshIndex mesh(by_mesh ? std::move(tris) : std::vector<Triangle>());
   const std::vector<FaceMesh> faces = face_meshes(meshed);
   r.box_volume = box.volume();
   FirstMismatch first(r.first_mismatch);
-  judge_samples(solid, by_mesh ? &mesh : nullptr, box, member, tol, tol + 3 * deflection, settings, first, r);
+  std::size_t exact = 0;
+  judge_samples(solid, by_mesh ? &mesh : nullptr, partial_avoid, box, member, tol, band, settings, first, r, &exact);
+  if (partial) r.classifier += ", and OCCT's solid classifier for the " + std::to_string(exact) + " samples no such ray decides";
   const double delta = settings.probe_offset * tol;
   judge_probes(solid, tol, pick_probes(meshed, faces, deflection, 10 * delta + deflection, settings), member, delta,
                deflection, first, r);

@@ -16,8 +16,10 @@ namespace sweep::occt {
 /// `deflection`, angular 0.5 rad; the shape keeps the triangulation). With `problem`, the
 /// triangulation is checked: every face triangulated, covering its area (to 5 %, or to pi
 /// deflection^2 on a small face), and closed;
-/// *problem says what is wrong, or is empty.
-std::vector<Triangle> triangulate(const TopoDS_Shape& shape, double deflection, std::string* problem = nullptr);
+/// *problem says what is wrong, or is empty. With `uncovered`, faces whose triangles do not cover
+/// them are put there (with what is wrong in *problem's place) instead of making a problem.
+std::vector<Triangle> triangulate(const TopoDS_Shape& shape, double deflection, std::string* problem = nullptr,
+                                  std::vector<std::pair<TopoDS_Face, std::string>>* uncovered = nullptr);
 
 struct VerdictResult {
   std::size_t samples = 0;        ///< points sampled in the box

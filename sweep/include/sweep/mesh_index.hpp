@@ -23,6 +23,11 @@ class MeshIndex {
   /// Whether p is inside: the parity of a ray's crossings, cast again in other directions when a
   /// ray passes within rounding of an edge or a vertex; the majority of three clean rays.
   bool inside(const Eigen::Vector3d& p) const;
+  /// The same test with rays that miss every box of `avoid` (regions where the triangles may not
+  /// follow the surface they stand for: only the triangles elsewhere are crossed, so the answer is
+  /// the surface's wherever the triangles outside those regions follow it): 1 inside, 0 outside,
+  /// -1 when p lies in one of the boxes or no clean ray misses them all.
+  int inside_avoiding(const Eigen::Vector3d& p, const std::vector<Eigen::AlignedBox3d>& avoid) const;
   /// The distance from p to the nearest triangle.
   double distance(const Eigen::Vector3d& p) const;
   /// The distance from p to the nearest triangle when it is below `limit`, else a value >= limit
