@@ -141,3 +141,39 @@ TEST_CASE("A torus turned about an axis across it: the crossings of its grazing 
   CHECK(found >= 2);
   CHECK(strays >= 1);  // where OCCT's section fails: a curve 0.08 off the torus, tolerance 0.12
 }
+
+TEST_CASE("Two tori cross where OCCT finds it: the zero set of one's exact distance over the other", "[touching]") {
+  // a torus and its copy turned 329 degrees about a skew axis (as the start and end copies of a
+  // revolute sweep): OCCT's section walks for seconds; the traced curves lie on both and have
+  // OCCT's length
+  const double size = 4, tol = 1e-7 * size;
+  const gp_Ax2 frame(gp_Pnt(-0.38, -0.31, -0.23), gp_Dir(0.909, 0.258, -0.327));
+  const TopoDS_Face a = face_of_kind(BRepPrimAPI_MakeTorus(frame, 1.26, 0.36, 2.0).Shape(), GeomAbs_Torus);
+  gp_Trsf turn;
+  turn.SetRotation(gp_Ax1(gp_Pnt(-0.457, -1.48, -0.699), gp_Dir(-0.853, -0.465, 0.236)), 329.17 * M_PI / 180);
+  const TopoDS_Face b = TopoDS::Face(a.Moved(TopLoc_Location(turn)));
+  double fit_err = 0;
+  const auto edges = torus_section(a, b, tol, size, &fit_err);
+  REQUIRE(edges);
+  REQUIRE(!edges->empty());
+  CHECK(fit_err <= tol);
+  double ours = 0;
+  for (const auto& e : *edges) {
+    ours += length(e);
+    double f, l;
+    const Handle(Geom_Curve) curve = BRep_Tool::Curve(e, f, l);
+    for (int k = 0; k <= 8; ++k) {
+      const gp_Pnt p = curve->Value(f + (l - f) * k / 8);
+      CHECK(distance(a, p) < 1e-6 * size);
+      CHECK(distance(b, p) < 1e-6 * size);
+    }
+  }
+  BRepAlgoAPI_Section sec(a, b, false);
+  sec.Approximation(true);
+  sec.Build();
+  REQUIRE(sec.IsDone());
+  CHECK(ours == Approx(length(sec.Shape())).epsilon(1e-4));
+  // a face on no torus is left to the caller
+  const TopoDS_Face cone = face_of_kind(BRepPrimAPI_MakeCone(1.0, 0.5, 2.0).Shape(), GeomAbs_Cone);
+  CHECK_FALSE(torus_section(a, cone, tol, size, &fit_err));
+}

@@ -684,6 +684,24 @@ Crossings crossings_of(const std::vector<Candidate>& cands, BoundaryContext& c) 
           return;
         }
       }
+      // a face on a torus: the zero set of its exact distance over the other face (OCCT's section
+      // of two tori walks for seconds)
+      for (const bool b_torus : {true, false}) {
+        if (!settings.torus_sections) break;
+        const TopoDS_Face& on = b_torus ? fa : fb;
+        const TopoDS_Face& torus = b_torus ? fb : fa;
+        double err = 0;
+        const auto traced = torus_section(on, torus, fit_tol, size, &err);
+        if (!traced) continue;
+        for (const TopoDS_Edge& e : *traced) {
+          const int sides = (on_boundary(e, fa, boundary_tol) ? 0 : 1) | (on_boundary(e, fb, boundary_tol) ? 0 : 2);
+          if (sides == 0) continue;
+          pair_edges[k].push_back(e);
+          pair_sides[k].push_back(sides);
+        }
+        pair_refit_error[k] = err;
+        return;
+      }
       BRepAlgoAPI_Section sec(fa, fb, false);
       sec.SetNonDestructive(true);
       sec.SetFuzzyValue(eps);

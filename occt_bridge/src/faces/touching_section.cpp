@@ -1,6 +1,7 @@
 // Crossings of the sweep of a grazing curve with the face it lies on (touching_section.hpp):
 // h(s, t) = (d(E(s, t)) - d(E(s, t*))) / (t - t*)^2 traced on a grid over the sweep's parameters,
-// its chains cut to the copy face and fitted.
+// its chains cut to the copy face and fitted; and crossings with a face on a torus, the zero set of
+// its exact distance over the other face's parameters.
 #include "faces/touching_section.hpp"
 
 #include <BRepAdaptor_Surface.hxx>
@@ -21,6 +22,7 @@
 #include <cmath>
 #include <functional>
 #include <memory>
+#include <cstdio>
 
 #include "base/internal.hpp"
 #include "sweep/contour.hpp"
@@ -146,6 +148,46 @@ Handle(Geom_BSplineCurve) fitted_run(const std::vector<gp_Pnt>& on, const std::v
   return worst <= tol ? c : nullptr;
 }
 
+/// Edges through a run of roots of h (points at(p)), each checked at the roots between its points:
+/// where a fit does not hold, the run is densified by those roots, and where that fit does not
+/// hold either, halved (at most `depth` times; false when a part still does not fit).
+bool fitted_edges(std::vector<UV> r, const ContourFunction& h, const std::function<gp_Pnt(const UV&)>& at, double tol,
+                  double size, int depth, std::vector<TopoDS_Edge>& edges, double* fit_err) {
+  for (int pass = 0; pass < 2; ++pass) {
+    std::vector<gp_Pnt> on;
+    for (const UV& p : r)
+      if (on.empty() || on.back().Distance(at(p)) > Settings::resolution * size) on.push_back(at(p));
+    if (on.size() < 2) return true;
+    std::vector<UV> mids;
+    std::vector<gp_Pnt> between;
+    for (std::size_t k = 0; k + 1 < r.size(); ++k) {
+      mids.push_back(root_across(h, 0.5 * (r[k] + r[k + 1]), r[k + 1] - r[k]));
+      between.push_back(at(mids.back()));
+    }
+    double err = 0;
+    const Handle(Geom_BSplineCurve) c = fitted_run(on, between, tol, &err);
+    if (!c.IsNull()) {
+      BRepBuilderAPI_MakeEdge mk(c);
+      if (!mk.IsDone()) return false;
+      *fit_err = std::max(*fit_err, err);
+      edges.push_back(mk.Edge());
+      return true;
+    }
+    if (pass == 1) break;
+    std::vector<UV> denser;
+    for (std::size_t k = 0; k < r.size(); ++k) {
+      denser.push_back(r[k]);
+      if (k < mids.size()) denser.push_back(mids[k]);
+    }
+    r = std::move(denser);
+  }
+  if (depth <= 0 || r.size() < 8) return false;
+  const std::size_t m = r.size() / 2;
+  return fitted_edges(std::vector<UV>(r.begin(), r.begin() + std::ptrdiff_t(m) + 1), h, at, tol, size, depth - 1, edges,
+                      fit_err) &&
+         fitted_edges(std::vector<UV>(r.begin() + std::ptrdiff_t(m), r.end()), h, at, tol, size, depth - 1, edges, fit_err);
+}
+
 }  // namespace
 
 std::optional<std::vector<TopoDS_Edge>> touching_section(const TouchingSweep& sw, double t_touch,
@@ -227,6 +269,56 @@ std::optional<std::vector<TopoDS_Edge>> touching_section(const TouchingSweep& sw
       if (!mk.IsDone()) return std::nullopt;
       edges.push_back(mk.Edge());
     }
+  }
+  return edges;
+}
+
+std::optional<std::vector<TopoDS_Edge>> torus_section(const TopoDS_Face& a, const TopoDS_Face& b, double tol,
+                                                      double size, double* fit_err) {
+  if (BRepAdaptor_Surface(b).GetType() != GeomAbs_Torus) return std::nullopt;
+  const auto dist = distance_function(b);
+  const BRepAdaptor_Surface S(a);
+  double u0, u1, v0, v1;
+  BRepTools::UVBounds(a, u0, u1, v0, v1);
+  if (!(u1 > u0) || !(v1 > v0)) return std::nullopt;
+  const std::function<gp_Pnt(const UV&)> at = [&](const UV& p) { return S.Value(p.x(), p.y()); };
+  const ContourFunction h = [&](const UV& p) { return dist(at(p)); };
+  const auto chains = contour_chains(h, u0, u1, v0, v1, 60, 60, 1e-12 * size);
+  BRepTopAdaptor_FClass2d in_a(a, 1e-9 * std::max(u1 - u0, v1 - v0));
+  FaceMembership in_b(b);
+  const double stray = 1e-6 * size;
+  auto good = [&](const UV& p) {
+    return std::abs(h(p)) <= stray && in_a.Perform(gp_Pnt2d(p.x(), p.y())) != TopAbs_OUT && in_b.contains(at(p));
+  };
+  std::vector<TopoDS_Edge> edges;
+  for (const auto& chain : chains) {
+    const std::vector<UV> dense = densified(h, chain);
+    std::vector<std::vector<UV>> runs;
+    std::vector<UV> run;
+    bool prev_in = false;
+    for (std::size_t k = 0; k < dense.size(); ++k) {
+      const bool in = good(dense[k]);
+      if (in != prev_in && k > 0) {
+        // the crossing of a face's boundary between the two points, bisected along the contour
+        const UV d = dense[k] - dense[k - 1];
+        auto on_contour = [&](double lambda) { return root_across(h, dense[k - 1] + lambda * d, d); };
+        double lo = 0, hi = 1;
+        for (int it = 0; it < 50; ++it) {
+          const double m = 0.5 * (lo + hi);
+          (good(on_contour(m)) == prev_in ? lo : hi) = m;
+        }
+        run.push_back(on_contour(prev_in ? lo : hi));
+        if (prev_in) {
+          if (run.size() >= 2) runs.push_back(run);
+          run.clear();
+        }
+      }
+      if (in) run.push_back(dense[k]);
+      prev_in = in;
+    }
+    if (run.size() >= 2) runs.push_back(run);
+    for (const std::vector<UV>& r : runs)
+      if (!fitted_edges(r, h, at, tol, size, 4, edges, fit_err)) return std::nullopt;
   }
   return edges;
 }

@@ -35,4 +35,12 @@ std::optional<std::vector<TopoDS_Edge>> touching_section(const TouchingSweep& sw
                                                          const TopoDS_Face& copy, double tol, double size,
                                                          double* fit_err);
 
+/// The curves where face `a` crosses face `b`, a face on a torus (whose distance is exact): the zero
+/// set of b's distance over a's parameters, cut to both faces and fitted to within `tol`
+/// (*fit_err: the largest distance measured). Nothing when b is no torus or a fit does not reach
+/// `tol`; the caller then intersects the faces otherwise. (OCCT's section of two tori walks for
+/// seconds.)
+std::optional<std::vector<TopoDS_Edge>> torus_section(const TopoDS_Face& a, const TopoDS_Face& b, double tol,
+                                                      double size, double* fit_err);
+
 }  // namespace sweep::occt

@@ -61,6 +61,10 @@ struct Settings {
   /// curve: their crossings are traced where the distance divided by the square of the time from
   /// the touching copy vanishes (off: OCCT's general section, which stalls or strays there).
   bool touching_sections = true;
+  /// A candidate face crossing a face on a torus crosses it where the torus's exact distance
+  /// vanishes over the other face's parameters: traced so (off: OCCT's general section, which walks
+  /// for seconds on two tori).
+  bool torus_sections = true;
 
   // --- grazing sets followed over a motion's range (grazing_family.hpp)
   /// Events of a grazing set are located by bisection to this fraction of the range.
