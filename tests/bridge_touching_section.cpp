@@ -45,6 +45,22 @@ double length(const TopoDS_Shape& s) {
   return g.Mass();
 }
 
+/// The edges' total length, each checked at 9 points to lie within 1e-6 of the size from both shapes.
+double length_on_both(const std::vector<TopoDS_Edge>& edges, const TopoDS_Shape& a, const TopoDS_Shape& b, double size) {
+  double total = 0;
+  for (const auto& e : edges) {
+    total += length(e);
+    double f, l;
+    const Handle(Geom_Curve) curve = BRep_Tool::Curve(e, f, l);
+    for (int k = 0; k <= 8; ++k) {
+      const gp_Pnt p = curve->Value(f + (l - f) * k / 8);
+      CHECK(distance(a, p) < 1e-6 * size);
+      CHECK(distance(b, p) < 1e-6 * size);
+    }
+  }
+  return total;
+}
+
 struct Case {
   TopoDS_Face face;
   ScrewJoint joint;
@@ -71,18 +87,8 @@ void check_touching(const Case& c, double tol, double size, int* edges_found, in
     const auto edges = touching_section(ts, 0.0, c.face, tol, size, &fit_err);
     REQUIRE(edges);
     CHECK(fit_err <= tol);
-    double ours = 0;
-    for (const auto& e : *edges) {
-      *edges_found += 1;
-      ours += length(e);
-      double f, l;
-      const Handle(Geom_Curve) curve = BRep_Tool::Curve(e, f, l);
-      for (int k = 0; k <= 8; ++k) {
-        const gp_Pnt p = curve->Value(f + (l - f) * k / 8);
-        CHECK(distance(c.face, p) < 1e-6 * size);
-        CHECK(distance(swept, p) < 1e-6 * size);
-      }
-    }
+    *edges_found += int(edges->size());
+    const double ours = length_on_both(*edges, c.face, swept, size);
     // OCCT's section of the sweep with the face: the touching curve itself, the crossings, and
     // (on some pairs) curves that stray from both faces by a tenth of the size, which are not counted
     BRepAlgoAPI_Section sec(swept, c.face, false);
@@ -157,17 +163,7 @@ TEST_CASE("Two tori cross where OCCT finds it: the zero set of one's exact dista
   REQUIRE(edges);
   REQUIRE(!edges->empty());
   CHECK(fit_err <= tol);
-  double ours = 0;
-  for (const auto& e : *edges) {
-    ours += length(e);
-    double f, l;
-    const Handle(Geom_Curve) curve = BRep_Tool::Curve(e, f, l);
-    for (int k = 0; k <= 8; ++k) {
-      const gp_Pnt p = curve->Value(f + (l - f) * k / 8);
-      CHECK(distance(a, p) < 1e-6 * size);
-      CHECK(distance(b, p) < 1e-6 * size);
-    }
-  }
+  const double ours = length_on_both(*edges, a, b, size);
   BRepAlgoAPI_Section sec(a, b, false);
   sec.Approximation(true);
   sec.Build();

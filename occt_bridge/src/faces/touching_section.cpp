@@ -148,6 +148,40 @@ Handle(Geom_BSplineCurve) fitted_run(const std::vector<gp_Pnt>& on, const std::v
   return worst <= tol ? c : nullptr;
 }
 
+/// The runs of a traced chain's points (densified) where `good` holds, each ending exactly where
+/// it stops holding: that crossing is bisected along the contour, each point of the chord first
+/// put on the contour across it (a point bisected on the chord and only then put on the contour
+/// would leave a face's boundary by the chord's sagitta, and its section would stop short of the
+/// boundary it must split the face at).
+std::vector<std::vector<UV>> runs_where(const ContourFunction& h, const std::vector<UV>& dense,
+                                        const std::function<bool(const UV&)>& good) {
+  std::vector<std::vector<UV>> runs;
+  std::vector<UV> run;
+  auto ends_run = [&]() {
+    if (run.size() >= 2) runs.push_back(run);
+    run.clear();
+  };
+  bool prev_in = false;
+  for (std::size_t k = 0; k < dense.size(); ++k) {
+    const bool in = good(dense[k]);
+    if (in != prev_in && k > 0) {
+      const UV d = dense[k] - dense[k - 1];
+      auto on_contour = [&](double lambda) { return root_across(h, dense[k - 1] + lambda * d, d); };
+      double a = 0, b = 1;
+      for (int it = 0; it < 50; ++it) {
+        const double m = 0.5 * (a + b);
+        (good(on_contour(m)) == prev_in ? a : b) = m;
+      }
+      run.push_back(on_contour(prev_in ? a : b));
+      if (prev_in) ends_run();
+    }
+    if (in) run.push_back(dense[k]);
+    prev_in = in;
+  }
+  ends_run();
+  return runs;
+}
+
 /// Edges through a run of roots of h (points at(p)), each checked at the roots between its points:
 /// where a fit does not hold, the run is densified by those roots, and where that fit does not
 /// hold either, halved (at most `depth` times; false when a part still does not fit).
@@ -214,38 +248,10 @@ std::optional<std::vector<TopoDS_Edge>> touching_section(const TouchingSweep& sw
   for (const auto& chain : chains) {
     const std::vector<UV> dense = densified(h, chain);
     // runs of points on both the sweep and the copy face
-    std::vector<std::vector<UV>> runs;
-    std::vector<UV> run;
-    auto ends_run = [&]() {
-      if (run.size() >= 2) runs.push_back(run);
-      run.clear();
-    };
     auto good = [&](const UV& p) {
       return std::abs(d(p.x(), p.y()) - d(p.x(), t_touch)) <= stray && member.contains(at(p.x(), p.y()));
     };
-    bool prev_in = false;
-    for (std::size_t k = 0; k < dense.size(); ++k) {
-      const bool in = good(dense[k]);
-      if (in != prev_in && k > 0) {
-        // the crossing of the face's boundary between the two points, bisected along the contour:
-        // each point of the chord is first put on the contour across it (a point bisected on the
-        // chord and only then put on the contour would leave the face's boundary by the chord's
-        // sagitta, and its section would stop short of the boundary it must split the face at)
-        const UV d = dense[k] - dense[k - 1];
-        auto on_contour = [&](double lambda) { return root_across(h, dense[k - 1] + lambda * d, d); };
-        double a = 0, b = 1;
-        for (int it = 0; it < 50; ++it) {
-          const double m = 0.5 * (a + b);
-          (good(on_contour(m)) == prev_in ? a : b) = m;
-        }
-        const UV edge_pt = on_contour(prev_in ? a : b);
-        run.push_back(edge_pt);
-        if (prev_in) ends_run();
-      }
-      if (in) run.push_back(dense[k]);
-      prev_in = in;
-    }
-    ends_run();
+    const std::vector<std::vector<UV>> runs = runs_where(h, dense, good);
     for (const auto& r : runs) {
       std::vector<gp_Pnt> on;
       for (const UV& p : r)
@@ -293,31 +299,7 @@ std::optional<std::vector<TopoDS_Edge>> torus_section(const TopoDS_Face& a, cons
   std::vector<TopoDS_Edge> edges;
   for (const auto& chain : chains) {
     const std::vector<UV> dense = densified(h, chain);
-    std::vector<std::vector<UV>> runs;
-    std::vector<UV> run;
-    bool prev_in = false;
-    for (std::size_t k = 0; k < dense.size(); ++k) {
-      const bool in = good(dense[k]);
-      if (in != prev_in && k > 0) {
-        // the crossing of a face's boundary between the two points, bisected along the contour
-        const UV d = dense[k] - dense[k - 1];
-        auto on_contour = [&](double lambda) { return root_across(h, dense[k - 1] + lambda * d, d); };
-        double lo = 0, hi = 1;
-        for (int it = 0; it < 50; ++it) {
-          const double m = 0.5 * (lo + hi);
-          (good(on_contour(m)) == prev_in ? lo : hi) = m;
-        }
-        run.push_back(on_contour(prev_in ? lo : hi));
-        if (prev_in) {
-          if (run.size() >= 2) runs.push_back(run);
-          run.clear();
-        }
-      }
-      if (in) run.push_back(dense[k]);
-      prev_in = in;
-    }
-    if (run.size() >= 2) runs.push_back(run);
-    for (const std::vector<UV>& r : runs)
+    for (const std::vector<UV>& r : runs_where(h, dense, good))
       if (!fitted_edges(r, h, at, tol, size, 4, edges, fit_err)) return std::nullopt;
   }
   return edges;
