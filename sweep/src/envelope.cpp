@@ -62,7 +62,6 @@ class Sheet {
   bool closed() const { return closed_; }
 
  private:
-
   /// The root of the grazing function at the pose on the line from `guess` (the sheet's point at s
   /// before Newton) across the arc. Near an open arc's end on a side of the domain the line turns
   /// smoothly to run along the side (over the first of the m_ intervals), so the end stays on the
@@ -99,6 +98,7 @@ class Sheet {
     out.xt = guess.xt - (grad.dot(guess.xt) + grazing_rate(*face_, pose, w.x(), w.y())) / across * dir;
     return out;
   }
+
   double g(const Vector2d& x, const PoseJet& pose) const {
     const Vector2d w = wrapped_parameters(*face_, x, period_);
     return grazing_value(*face_, pose, w.x(), w.y());
