@@ -53,8 +53,11 @@ core() {
 bridge() {
   export ASAN_OPTIONS=detect_leaks=0:abort_on_error=1
   # the surface-under-one-joint verdict case and the oblique torus extrusion's OCCT volumes are
-  # left out: their parameter search and OCCT's integration of spline extrusions take minutes there
-  "$out/bin/bridge_quick_tests" '"Kinds*" ~"Kinds: a surface extruded*" ~"Kinds: a torus extruded obliquely*","Boundary faces*","Sewing*","Brep entity*","Stop*","Circle and torus*","Trajectory membership*","Merging faces*","Verdict*" ~"Verdict: a surface under one joint*","Sweep: STEP written*","Signals*","Section refit*","One engine*"'
+  # left out: their parameter search and OCCT's integration of spline extrusions take minutes there;
+  # so is the verdict case that first computes a whole sweep, whose small faces (and so which of
+  # them its triangles cover) follow the compiler's rounding (the rays it casts are the core's
+  # MeshIndex, which the core tests run here)
+  "$out/bin/bridge_quick_tests" '"Kinds*" ~"Kinds: a surface extruded*" ~"Kinds: a torus extruded obliquely*","Boundary faces*","Sewing*","Brep entity*","Stop*","Circle and torus*","Trajectory membership*","Merging faces*","Verdict*" ~"Verdict: a surface under one joint*" ~"Verdict: rays against*","Sweep: STEP written*","Signals*","Section refit*","One engine*"'
   echo "sanitize: bridge tests, no finding"
 }
 
