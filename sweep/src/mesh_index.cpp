@@ -168,25 +168,10 @@ const std::array<Vector3d, 14>& ray_directions() {
 
 }  // namespace
 
-bool MeshIndex::inside(const Vector3d& p) const {
-  if (tris_.empty() || !box_.contains(p)) return false;
+int MeshIndex::ray_vote(const Vector3d& p, const std::vector<Eigen::AlignedBox3d>& avoid, std::size_t directions) const {
   int votes_in = 0, votes = 0;
-  for (std::size_t k = 0; k < 7; ++k) {
-    int n = 0;
-    if (!crossings(p, ray_directions()[k], &n)) continue;
-    ++votes;
-    votes_in += n % 2;
-    if (votes == 3) break;
-  }
-  return votes > 0 && 2 * votes_in > votes;
-}
-
-int MeshIndex::inside_avoiding(const Vector3d& p, const std::vector<Eigen::AlignedBox3d>& avoid) const {
-  for (const auto& b : avoid)
-    if (b.contains(p)) return -1;
-  if (tris_.empty() || !box_.contains(p)) return 0;
-  int votes_in = 0, votes = 0;
-  for (const Vector3d& d : ray_directions()) {
+  for (std::size_t k = 0; k < directions; ++k) {
+    const Vector3d& d = ray_directions()[k];
     const Vector3d inv(1.0 / d.x(), 1.0 / d.y(), 1.0 / d.z());
     if (std::any_of(avoid.begin(), avoid.end(), [&](const Eigen::AlignedBox3d& b) { return ray_meets_box(b, p, inv); }))
       continue;
@@ -198,6 +183,18 @@ int MeshIndex::inside_avoiding(const Vector3d& p, const std::vector<Eigen::Align
   }
   if (votes == 0) return -1;
   return 2 * votes_in > votes ? 1 : 0;
+}
+
+bool MeshIndex::inside(const Vector3d& p) const {
+  if (tris_.empty() || !box_.contains(p)) return false;
+  return ray_vote(p, {}, 7) == 1;
+}
+
+int MeshIndex::inside_avoiding(const Vector3d& p, const std::vector<Eigen::AlignedBox3d>& avoid) const {
+  for (const auto& b : avoid)
+    if (b.contains(p)) return -1;
+  if (tris_.empty() || !box_.contains(p)) return 0;
+  return ray_vote(p, avoid, ray_directions().size());
 }
 
 double MeshIndex::distance_below(const Vector3d& p, double limit) const {

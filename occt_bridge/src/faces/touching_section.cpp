@@ -22,7 +22,6 @@
 #include <cmath>
 #include <functional>
 #include <memory>
-#include <cstdio>
 
 #include "base/internal.hpp"
 #include "sweep/contour.hpp"
@@ -182,16 +181,20 @@ std::vector<std::vector<UV>> runs_where(const ContourFunction& h, const std::vec
   return runs;
 }
 
-/// Edges through a run of roots of h (points at(p)), each checked at the roots between its points:
-/// where a fit does not hold, the run is densified by those roots, and where that fit does not
-/// hold either, halved (at most `depth` times; false when a part still does not fit).
+/// Edges through a run of roots of h (points at(p)), each checked at the roots between its points;
+/// a run reaching less than `min_reach` from its first point makes none. With `depth` > 0, where a
+/// fit does not hold, the run is densified by those roots, and where that fit does not hold
+/// either, halved (at most `depth` times). False when a part does not fit.
 bool fitted_edges(std::vector<UV> r, const ContourFunction& h, const std::function<gp_Pnt(const UV&)>& at, double tol,
-                  double size, int depth, std::vector<TopoDS_Edge>& edges, double* fit_err) {
-  for (int pass = 0; pass < 2; ++pass) {
+                  double size, double min_reach, int depth, std::vector<TopoDS_Edge>& edges, double* fit_err) {
+  for (int pass = 0; pass < (depth > 0 ? 2 : 1); ++pass) {
     std::vector<gp_Pnt> on;
     for (const UV& p : r)
       if (on.empty() || on.back().Distance(at(p)) > Settings::resolution * size) on.push_back(at(p));
     if (on.size() < 2) return true;
+    double reach = 0;
+    for (const gp_Pnt& p : on) reach = std::max(reach, p.Distance(on.front()));
+    if (reach < min_reach) return true;
     std::vector<UV> mids;
     std::vector<gp_Pnt> between;
     for (std::size_t k = 0; k + 1 < r.size(); ++k) {
@@ -217,9 +220,10 @@ bool fitted_edges(std::vector<UV> r, const ContourFunction& h, const std::functi
   }
   if (depth <= 0 || r.size() < 8) return false;
   const std::size_t m = r.size() / 2;
-  return fitted_edges(std::vector<UV>(r.begin(), r.begin() + std::ptrdiff_t(m) + 1), h, at, tol, size, depth - 1, edges,
-                      fit_err) &&
-         fitted_edges(std::vector<UV>(r.begin() + std::ptrdiff_t(m), r.end()), h, at, tol, size, depth - 1, edges, fit_err);
+  return fitted_edges(std::vector<UV>(r.begin(), r.begin() + std::ptrdiff_t(m) + 1), h, at, tol, size, min_reach,
+                      depth - 1, edges, fit_err) &&
+         fitted_edges(std::vector<UV>(r.begin() + std::ptrdiff_t(m), r.end()), h, at, tol, size, min_reach, depth - 1,
+                      edges, fit_err);
 }
 
 }  // namespace
@@ -230,6 +234,7 @@ std::optional<std::vector<TopoDS_Edge>> touching_section(const TouchingSweep& sw
   if (sw.T <= 0) return std::nullopt;
   const auto dist = distance_function(copy);
   auto at = [&](double s, double t) { return to_pnt(sw.joint.transform(t) * to_eigen(sw.curve->Value(s))); };
+  const std::function<gp_Pnt(const UV&)> at_uv = [&](const UV& p) { return at(p.x(), p.y()); };
   auto d = [&](double s, double t) { return dist(at(s, t)); };
   // h = (d(s, t) - d(s, t*)) / (t - t*)^2; within tau of t* it is interpolated between its limit
   // at t* (extrapolated from tau and 2 tau) and its value at tau, where rounding would dominate.
@@ -251,30 +256,10 @@ std::optional<std::vector<TopoDS_Edge>> touching_section(const TouchingSweep& sw
     auto good = [&](const UV& p) {
       return std::abs(d(p.x(), p.y()) - d(p.x(), t_touch)) <= stray && member.contains(at(p.x(), p.y()));
     };
-    const std::vector<std::vector<UV>> runs = runs_where(h, dense, good);
-    for (const auto& r : runs) {
-      std::vector<gp_Pnt> on;
-      for (const UV& p : r)
-        if (on.empty() || on.back().Distance(at(p.x(), p.y())) > Settings::resolution * size) on.push_back(at(p.x(), p.y()));
-      if (on.size() < 2) continue;
-      // (a run within 1e-4 of the size is a point where the curve meets the joint's axis: its orbit
-      // is that point, on the copy at every t)
-      double reach = 0;
-      for (const gp_Pnt& p : on) reach = std::max(reach, p.Distance(on.front()));
-      if (reach < 1e-4 * size) continue;
-      std::vector<gp_Pnt> between;
-      for (std::size_t k = 0; k + 1 < r.size(); ++k) {
-        const UV m = root_across(h, 0.5 * (r[k] + r[k + 1]), r[k + 1] - r[k]);
-        between.push_back(at(m.x(), m.y()));
-      }
-      double err = 0;
-      const Handle(Geom_BSplineCurve) c = fitted_run(on, between, tol, &err);
-      if (c.IsNull()) return std::nullopt;
-      *fit_err = std::max(*fit_err, err);
-      BRepBuilderAPI_MakeEdge mk(c);
-      if (!mk.IsDone()) return std::nullopt;
-      edges.push_back(mk.Edge());
-    }
+    // (a run within 1e-4 of the size is a point where the curve meets the joint's axis: its orbit
+    // is that point, on the copy at every t)
+    for (const std::vector<UV>& r : runs_where(h, dense, good))
+      if (!fitted_edges(r, h, at_uv, tol, size, 1e-4 * size, 0, edges, fit_err)) return std::nullopt;
   }
   return edges;
 }
@@ -300,7 +285,7 @@ std::optional<std::vector<TopoDS_Edge>> torus_section(const TopoDS_Face& a, cons
   for (const auto& chain : chains) {
     const std::vector<UV> dense = densified(h, chain);
     for (const std::vector<UV>& r : runs_where(h, dense, good))
-      if (!fitted_edges(r, h, at, tol, size, 4, edges, fit_err)) return std::nullopt;
+      if (!fitted_edges(r, h, at, tol, size, 0.0, 4, edges, fit_err)) return std::nullopt;
   }
   return edges;
 }

@@ -41,6 +41,9 @@ class MeshIndex {
     int first = 0, count = 0;   ///< a leaf's triangles in order_
   };
   int build(int first, int count, int depth);
+  /// The majority of three clean rays among the first `directions` of a fixed set that miss every
+  /// box of `avoid`: 1 inside, 0 outside, -1 when no ray is clean.
+  int ray_vote(const Eigen::Vector3d& p, const std::vector<Eigen::AlignedBox3d>& avoid, std::size_t directions) const;
   /// Crossings of the ray p + s d (s > 0); false when the ray comes too close to an edge.
   bool crossings(const Eigen::Vector3d& p, const Eigen::Vector3d& d, int* count) const;
 
