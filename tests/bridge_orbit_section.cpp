@@ -255,6 +255,84 @@ TEST_CASE("Orbit sections: helical sweeps of curves through one point cross alon
   CHECK_FALSE(orbit_patch(a, other, eps, btol));
 }
 
+TEST_CASE("Orbit sections: helical sweeps of a grazing line and an edge from its end touch there and cross nowhere") {
+  // a box's face y = 0.0826 screwed about an oblique axis (CI case 48): its grazing line (where
+  // the motion is tangent to the face) ends on the face's bottom edge. In the plane across the
+  // orbits the line's profile is the fold of the face's, and the edge's leaves it tangentially:
+  // the solver stopped 1e-6 short of the shared end, where the profiles meet at no angle, and
+  // the pair went to OCCT's section of two faces tangent along the helix of that end.
+  ScrewJoint j;
+  j.type = JointType::Helical;
+  j.point = Eigen::Vector3d(0.606009, 1.763570, 0.786093);
+  j.direction = Eigen::Vector3d(0.436393, -0.289719, 0.851836).normalized();
+  j.pitch = 1.013665 / (2 * M_PI);
+  const double y = 0.082599, z0 = 0.126736, z1 = 0.810331, x1 = 1.483666;
+  const double T = M_PI / 2, tol = 1e-7, eps = 1e-9;
+  // n . v = 0 on the face, n = -y: linear in x and z
+  const Eigen::Vector3d n(0, -1, 0);
+  auto g = [&](double x, double z) {
+    const Eigen::Vector3d p(x, y, z);
+    return n.dot(j.direction.cross(p - j.point) + j.pitch * j.direction);
+  };
+  auto grazing_x = [&](double z) { return -g(0, z) / (g(1, z) - g(0, z)); };
+  const gp_Pnt E(grazing_x(z0), y, z0), F(grazing_x(z1), y, z1);
+  REQUIRE(E.X() == Approx(0.32309).margin(1e-5));
+  const TopoDS_Edge line = BRepBuilderAPI_MakeEdge(E, F).Edge();
+  const TopoDS_Edge edge = BRepBuilderAPI_MakeEdge(E, gp_Pnt(x1, y, z0)).Edge();
+  auto swept = [&](const TopoDS_Edge& e, double* err) {
+    double f, l;
+    const Handle(Geom_Curve) c = BRep_Tool::Curve(e, f, l);
+    const std::vector<TopoDS_Face> faces = occt::sweep_curve(c, f, l, j, T, tol, err);
+    REQUIRE(faces.size() == 1);
+    return faces.front();
+  };
+  double err = 0;
+  const TopoDS_Face a = swept(line, &err), b = swept(edge, &err);
+  const double btol = std::max(100 * eps, 10 * err);
+  const auto pa = orbit_patch(a, j, eps, btol), pb = orbit_patch(b, j, eps, btol);
+  REQUIRE(pa);
+  REQUIRE(pb);
+  for (const bool swap : {false, true}) {
+    const auto arcs = swap ? orbit_section(*pb, *pa, j, btol) : orbit_section(*pa, *pb, j, btol);
+    REQUIRE(arcs);
+    CHECK(arcs->empty());
+  }
+  // they touch along the helix of E
+  for (double t : {0.0, 0.3, 0.7, 1.0}) {
+    const TopoDS_Vertex v = BRepBuilderAPI_MakeVertex(occt::to_pnt(j.transform(T * t) * occt::to_eigen(E))).Vertex();
+    CHECK(distance(v, a) < 1e-6);
+    CHECK(distance(v, b) < 1e-6);
+  }
+  // and cross nowhere: two points lie on one helix when their helical coordinates (r, phi - z /
+  // pitch) agree, so the sweeps cross where the polylines of those coordinates cross (within a
+  // quarter turn of height), which they do not past the shared end
+  const Eigen::Vector3d e0 = occt::to_eigen(E), e1(x1, y, z0), f1 = occt::to_eigen(F);
+  const Eigen::Vector3d ax = j.direction, ux = ax.unitOrthogonal(), uy = ax.cross(ux);
+  auto profile = [&](const Eigen::Vector3d& x) {
+    const Eigen::Vector3d d = x - j.point;
+    const double psi = std::atan2(d.dot(uy), d.dot(ux)) - d.dot(ax) / j.pitch;
+    const double r = (d - ax * d.dot(ax)).norm();
+    return Eigen::Vector2d(r * std::cos(psi), r * std::sin(psi));
+  };
+  const int N = 2000;
+  std::vector<Eigen::Vector2d> pl, pe;
+  for (int k = 0; k <= N; ++k) {
+    pl.push_back(profile(e0 + (f1 - e0) * double(k) / N));
+    pe.push_back(profile(e0 + (e1 - e0) * double(k) / N));
+  }
+  auto cross2 = [](const Eigen::Vector2d& u, const Eigen::Vector2d& v) { return u.x() * v.y() - u.y() * v.x(); };
+  int crossings = 0;
+  for (int k = N / 100; k < N; ++k)
+    for (int m = N / 100; m < N; ++m) {
+      const Eigen::Vector2d p = pl[k], r = pl[k + 1] - pl[k], q = pe[m], u = pe[m + 1] - pe[m];
+      const double den = cross2(r, u);
+      if (den == 0) continue;
+      const double t = cross2(q - p, u) / den, w = cross2(q - p, r) / den;
+      if (t >= 0 && t <= 1 && w >= 0 && w <= 1) ++crossings;
+    }
+  CHECK(crossings == 0);
+}
+
 namespace {
 
 // Revolute and prismatic sweeps of the random generator's solids but tori

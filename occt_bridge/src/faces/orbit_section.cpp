@@ -304,6 +304,26 @@ std::optional<TopoDS_Edge> helix_section(const Carried& a, const Carried& b, con
   return std::nullopt;
 }
 
+/// Whether profile parameters ba and bb (where the profiles of a and b meet) lie where the two
+/// profiles run together into an end they share: the sweeps of two curves from one vertex of the
+/// body, one a grazing curve, whose profiles touch there (the grazing curve's profile is the fold
+/// of its face's, and the other curve's leaves it tangentially). A solver at such a touching point
+/// stops short of the end, where the profiles are closer than `tol` but meet at no angle; the
+/// profiles are then within `tol` all the way to the shared end.
+bool in_shared_end_contact(const Carried& a, const Carried& b, const OrbitFrame& ax, double ba, double bb, double tol) {
+  for (const double ea : {a.b0, a.b1})
+    for (const double eb : {b.b0, b.b1}) {
+      if ((profile(a, ax, ea).m - profile(b, ax, eb).m).norm() > tol) continue;
+      bool together = true;
+      for (const double f : {0.25, 0.5, 0.75}) {
+        const Eigen::Vector2d pa = profile(a, ax, ba + f * (ea - ba)).m, pb = profile(b, ax, bb + f * (eb - bb)).m;
+        together = together && (pa - pb).norm() <= tol;
+      }
+      if (together) return true;
+    }
+  return false;
+}
+
 /// Whether a face on a surface of this type can be swept along the joint's orbits: surfaces of
 /// revolution under a revolute joint, extrusions and planes under a prismatic one, cylinders under
 /// either, and under a helical joint the B-splines its sweeps are fitted as.
@@ -499,6 +519,7 @@ std::optional<std::vector<TopoDS_Edge>> orbit_section(const OrbitPatch& patch_a,
         return (profile(pp, ax, pp.b0).m - x).norm() <= boundary_tol || (profile(pp, ax, pp.b1).m - x).norm() <= boundary_tol;
       };
       if (at_end(a, A.m) || at_end(b, A.m)) continue;      // on a boundary
+      if (in_shared_end_contact(a, b, ax, ba, bb, boundary_tol)) continue;
       if (ax.turning && A.m(0) <= boundary_tol) continue;  // on the axis
       const double sine = std::abs(A.dm(0) * B.dm(1) - A.dm(1) * B.dm(0)) / (A.dm.norm() * B.dm.norm());
       if (!(sine >= 1e-3)) return std::nullopt;  // tangent or nearly so
