@@ -244,16 +244,23 @@ TEST_CASE("Random cases: a box screwed where a grazing line's sweep crosses the 
   CHECK(right_volume(r.report.volume_brep, row.volume, row.error));
 }
 
-TEST_CASE("Random cases: a helical stage whose boundary does not close is made again with OCCT's sections, then from cells") {
-  // a box screwed about an oblique axis (case 48 of the CI table): the boundary from the traced
-  // crossings does not close, nor the one from OCCT's sections; the run ends right or failed with
-  // its reason, never wrong and ok
+TEST_CASE("Random cases: a box screwed whose grazing line ends next to a corner closes its boundary from the traced crossings") {
+  // a box screwed about an oblique axis (case 48 of the CI table): a face's grazing line ends on an
+  // edge 0.0028 from a corner. The profiles of that line's and the edge's sweeps touch where they
+  // meet (the line's is the fold of the face's), and the other edge from the corner crosses the
+  // edge's sweep at an angle of 4e-4 radians, 0.0043 further on: the strip between is boundary,
+  // but the grazing sheet lies closer to it than the classification's offset, whose probes both
+  // landed beyond it. The boundary did not close, and the cells lost half the solid (failed on its
+  // geometric error, 14 s).
   const TableRow row = table_row("box_helical_48");
   std::vector<std::string> steps;
   const occt::RunResult r = run_row(row, &steps);
   INFO(r.report.message);
-  if (r.report.ok()) CHECK(right_volume(r.report.volume_brep, row.volume, row.error));
-  else CHECK(!r.report.message.empty());
+  REQUIRE(r.report.ok());
+  CHECK(step_mentioning(steps, "again") == "");
+  CHECK(step_mentioning(steps, "cells") == "");
+  CHECK(r.report.tol_achieved <= r.report.tol_requested);
+  CHECK(right_volume(r.report.volume_brep, row.volume, row.error));
 }
 
 TEST_CASE("Random cases: a torus extruded obliquely is right where a section crosses the fold of its extruded grazing curve") {

@@ -816,13 +816,18 @@ std::vector<Piece> split_candidates(const std::vector<Candidate>& cands,
 }
 
 /// Each piece: 1 kept as it is, -1 kept reversed, 0 dropped (exactly one side in the swept set
-/// keeps it); a piece that no sample decides fails the boundary.
-std::vector<int> classify_pieces(const std::vector<Piece>& all, const PointTestMaker& member, BoundaryContext& c) {
+/// keeps it); a piece that no sample decides fails the boundary. With `closer`, the sample that
+/// decides is probed again at offsets down to `finest`, eight times closer each time, and the
+/// closest whose answers agree at both offsets decides: another sheet closer to a piece than the
+/// offset (crossing it at a small angle over a strip) turns both probes.
+std::vector<int> classify_pieces(const std::vector<Piece>& all, const PointTestMaker& member, BoundaryContext& c,
+                                 bool closer) {
   const double size = c.size;
   const Settings& settings = c.settings;
   BoundarySweep& out = c.out;
   const auto t_cls = Clock::now();
   const double delta = settings.classify_offset * size;
+  const double finest = std::max(settings.classify_finest_offset * size, 10 * out.fit_error);
   // 1 keep as is, -1 keep reversed, 0 drop, 2 undecided
   std::vector<int> keep(all.size(), 0);
   parallel_for(all.size(), [&]() -> std::function<void(std::size_t)> {
@@ -833,10 +838,18 @@ std::vector<int> classify_pieces(const std::vector<Piece>& all, const PointTestM
       auto decide = [&](const std::vector<SurfacePoint>& samples) {
         for (const auto& s : samples) {
           const Eigen::Vector3d p = to_eigen(s.p), nn = to_eigen(s.n);
-          const bool out1 = in_set(p + delta * nn), in1 = in_set(p - delta * nn);
-          const bool out2 = in_set(p + 2 * delta * nn), in2 = in_set(p - 2 * delta * nn);
-          if (out1 != out2 || in1 != in2) continue;
-          return out1 == in1 ? 0 : (in1 ? 1 : -1);
+          // (the answer at offset d, 2 when the offsets d and 2 d disagree)
+          auto answer_at = [&](double d) {
+            const bool out1 = in_set(p + d * nn), in1 = in_set(p - d * nn);
+            const bool out2 = in_set(p + 2 * d * nn), in2 = in_set(p - 2 * d * nn);
+            if (out1 != out2 || in1 != in2) return 2;
+            return out1 == in1 ? 0 : (in1 ? 1 : -1);
+          };
+          int answer = answer_at(delta);
+          if (answer == 2) continue;
+          for (double d = delta / 8; closer && d >= finest; d /= 8)
+            if (const int near = answer_at(d); near != 2) answer = near;
+          return answer;
         }
         return 2;
       };
@@ -844,13 +857,18 @@ std::vector<int> classify_pieces(const std::vector<Piece>& all, const PointTestM
       if (keep[i] == 2) keep[i] = decide(edge_samples(all[i].face, 12));
     };
   });
-  out.seconds["classification"] = since(t_cls);
+  out.seconds["classification"] = out.seconds.value("classification", 0.0) + since(t_cls);
   for (std::size_t i = 0; i < all.size(); ++i)
     if (keep[i] == 2) {
       throw BoundaryFailure{"a piece of the boundary could not be classified (it is thinner than the classification offset)"};
     }
 
   return keep;
+}
+
+/// Whether sewn pieces close into a valid solid (as they are, or once healed: what the caller takes).
+bool closes(const TopoDS_Shape& solid) {
+  return !solid.IsNull() && (closed_solids(solid) || closed_solids(healed(solid))) && BRepCheck_Analyzer(solid).IsValid();
 }
 
 /// Diagnostics (SWEEP_DUMP_BOUNDARY=dir): candidates, pieces, kept pieces and sections as BREP files
@@ -976,11 +994,35 @@ BoundarySweep boundary_sweep(const TopoDS_Shape& body, const ScrewJoint& j, doub
     group_by_surface(cands, c);
     const Crossings crossings = crossings_of(cands, c);
     const std::vector<Piece> pieces = split_candidates(cands, crossings.tools, c);
-    const std::vector<int> keep = classify_pieces(pieces, member, c);
+    const std::vector<int> keep = classify_pieces(pieces, member, c, false);
     if (const char* dir = std::getenv("SWEEP_DUMP_BOUNDARY"))
       dump_boundary((std::string(dir) + (settings.touching_sections ? "" : "/general")).c_str(), cands, pieces, keep,
                     crossings.pair_edges);
-    sew_kept(pieces, keep, c);
+    // Pieces that do not close into a valid solid are classified again closer to each sample (a
+    // sheet within the offset of a piece turns both its probes), and taken when those close into
+    // one. (Not at first: a piece that lies within the tolerance of its sheet but farther than a
+    // closer offset would be dropped.)
+    std::optional<BoundaryFailure> failed;
+    try {
+      sew_kept(pieces, keep, c);
+    } catch (const BoundaryFailure& f) {
+      failed = f;
+      out.solid.Nullify();
+    }
+    if (!closes(out.solid)) {
+      const std::vector<int> keep_closer = classify_pieces(pieces, member, c, true);
+      if (keep_closer != keep) {
+        const BoundarySweep first = out;
+        try {
+          sew_kept(pieces, keep_closer, c);
+        } catch (const BoundaryFailure&) {
+          out.solid.Nullify();
+        }
+        if (closes(out.solid)) failed.reset();
+        else out = first;
+      }
+    }
+    if (failed) throw *failed;
   } catch (const BoundaryFailure& f) {
     out.failure = f.why;
   }

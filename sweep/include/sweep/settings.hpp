@@ -45,6 +45,11 @@ struct Settings {
   /// How far off a piece of the candidate boundary its two sides are tested (x size), and again at
   /// twice that; a piece is kept when exactly one side is in the swept set.
   double classify_offset = 2e-6;
+  /// When the kept pieces do not close: the smallest offset (x size) down to which those tests are
+  /// repeated, eight times closer each time (another sheet within classify_offset of a piece turns
+  /// both probes); the closest answers that agree at both offsets decide. Never below ten times
+  /// the pieces' fit error.
+  double classify_finest_offset = 5e-9;
   /// A face whose pieces come out of OCCT's splitter with tolerances above this many requested
   /// tolerances is split again, its section curves given curves on it from points projected onto
   /// its surface (off: the splitter's pieces are kept).
