@@ -189,8 +189,7 @@ struct TurnedCylinder {
 const TurnedCylinder& turned_cylinder() {
   static const TurnedCylinder c = [] {
     TurnedCylinder t;
-    // (the spec as written, not drawn again: the generator's draws depend on the compiler's order
-    // of evaluating arguments)
+    // (the spec as written: case 56 of the CI table)
     t.spec = parse_spec(R"json({"sweep": 1, "name": "cylinder_revolute_56", "angles": "deg",
         "entity": {"kind": "cylinder", "base": [-0.407846, -0.228860, 0.564349], "axis": [-0.548748, 0.582397, -0.599742],
                    "radius": 0.491327, "height": 1.330249},

@@ -60,9 +60,12 @@ inline RandomCase random_one_joint_case(std::uint64_t seed, int index) {
   std::uniform_real_distribution<double> uni(0.0, 1.0);
   auto in = [&](double a, double b) { return a + (b - a) * uni(rng); };
   auto u = [&]() { return uni(rng); };
+  // (every draw in a statement of its own, so that every compiler draws alike; z before y before
+  // x, and the later fields of an entity first, is the order the tables in tests/data were made in)
   auto vec = [&](double s) {
+    const double z = in(-s, s), y = in(-s, s), x = in(-s, s);
     char b[96];
-    std::snprintf(b, sizeof b, "[%.6f, %.6f, %.6f]", in(-s, s), in(-s, s), in(-s, s));
+    std::snprintf(b, sizeof b, "[%.6f, %.6f, %.6f]", x, y, z);
     return std::string(b);
   };
   const auto num = fixed6;
@@ -80,25 +83,38 @@ inline RandomCase random_one_joint_case(std::uint64_t seed, int index) {
   std::string entity;
   if (kind == "box") {
     const double x = in(-1, 0.5), y = in(-1, 0.5), z = in(-1, 0.5);
+    const double dz = in(0.3, 1.5), dy = in(0.3, 1.5), dx = in(0.3, 1.5);
     entity = "{\"kind\": \"box\", \"min\": [" + num(x) + ", " + num(y) + ", " + num(z) + "], \"max\": [" +
-             num(x + in(0.3, 1.5)) + ", " + num(y + in(0.3, 1.5)) + ", " + num(z + in(0.3, 1.5)) + "]}";
+             num(x + dx) + ", " + num(y + dy) + ", " + num(z + dz) + "]}";
   } else if (kind == "sphere") {
-    entity = "{\"kind\": \"sphere\", \"center\": " + vec(1) + ", \"radius\": " + num(in(0.3, 1.2)) + "}";
+    const double radius = in(0.3, 1.2);
+    const std::string center = vec(1);
+    entity = "{\"kind\": \"sphere\", \"center\": " + center + ", \"radius\": " + num(radius) + "}";
   } else if (kind == "cylinder") {
-    entity = "{\"kind\": \"cylinder\", \"base\": " + vec(1) + ", \"axis\": " + unit() +
-             ", \"radius\": " + num(in(0.2, 0.8)) + ", \"height\": " + num(in(0.5, 2)) + "}";
+    const double height = in(0.5, 2), radius = in(0.2, 0.8);
+    const std::string axis = unit(), base = vec(1);
+    entity = "{\"kind\": \"cylinder\", \"base\": " + base + ", \"axis\": " + axis + ", \"radius\": " + num(radius) +
+             ", \"height\": " + num(height) + "}";
   } else if (kind == "cone") {
     const bool pointed = uni(rng) < 0.3;
-    entity = "{\"kind\": \"cone\", \"base\": " + vec(1) + ", \"axis\": " + unit() + ", \"radius1\": " + num(in(0.3, 0.9)) +
-             ", \"radius2\": " + num(pointed ? 0.0 : in(0.1, 0.6)) + ", \"height\": " + num(in(0.5, 2)) + "}";
+    const double height = in(0.5, 2);
+    const double radius2 = pointed ? 0.0 : in(0.1, 0.6);
+    const double radius1 = in(0.3, 0.9);
+    const std::string axis = unit(), base = vec(1);
+    entity = "{\"kind\": \"cone\", \"base\": " + base + ", \"axis\": " + axis + ", \"radius1\": " + num(radius1) +
+             ", \"radius2\": " + num(radius2) + ", \"height\": " + num(height) + "}";
   } else if (kind == "elliptic_cylinder") {
     const double a = in(0.3, 1.0);
-    entity = "{\"kind\": \"elliptic_cylinder\", \"base\": " + vec(1) + ", \"axis\": " + unit() + ", \"a\": " + num(a) +
-             ", \"b\": " + num(a * in(0.25, 0.9)) + ", \"height\": " + num(in(0.5, 2)) + "}";
+    const double height = in(0.5, 2), ratio = in(0.25, 0.9);
+    const std::string axis = unit(), base = vec(1);
+    entity = "{\"kind\": \"elliptic_cylinder\", \"base\": " + base + ", \"axis\": " + axis + ", \"a\": " + num(a) +
+             ", \"b\": " + num(a * ratio) + ", \"height\": " + num(height) + "}";
   } else {
     const double minor = in(0.15, 0.5);
-    entity = "{\"kind\": \"torus\", \"center\": " + vec(1) + ", \"axis\": " + unit() +
-             ", \"major\": " + num(minor + in(0.3, 1.2)) + ", \"minor\": " + num(minor) + "}";
+    const double major = minor + in(0.3, 1.2);
+    const std::string axis = unit(), center = vec(1);
+    entity = "{\"kind\": \"torus\", \"center\": " + center + ", \"axis\": " + axis + ", \"major\": " + num(major) +
+             ", \"minor\": " + num(minor) + "}";
   }
   // the axis: through the entity's region, beside it or away from it
   const double reach = random_axis_reach(u);

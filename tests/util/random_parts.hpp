@@ -58,22 +58,27 @@ void part_in_own_frame(int k, In& in, TopoDS_Shape& shape, OrbitSolidPtr& orbit)
         BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(base.x(), base.y(), base.z()), gp_Dir(0, 0, 1)), r, h).Shape(),
         orbit_cylinder(base, Eigen::Vector3d::UnitZ(), r, h));
   };
+  // (every draw in a statement of its own, so that every compiler draws alike; the order, later
+  // arguments first, is the one the tables in tests/data were made in)
   const double a = in(0.6, 1.6), b = in(0.5, 1.4), c = in(0.2, 0.8);
   const auto block = box(Eigen::Vector3d::Zero(), Eigen::Vector3d(a, b, c));
   if (k == 0) {  // a plate with a through hole
     const double r = in(0.1, 0.45) * std::min(a, b) * 0.5;
-    const Eigen::Vector3d ctr(in(r + 0.05, a - r - 0.05), in(r + 0.05, b - r - 0.05), -0.1);
+    const double cy = in(r + 0.05, b - r - 0.05), cx = in(r + 0.05, a - r - 0.05);
+    const Eigen::Vector3d ctr(cx, cy, -0.1);
     const auto hole = cylinder_z(ctr, r, c + 0.2);
     shape = BRepAlgoAPI_Cut(block.first, hole.first).Shape();
     orbit = orbit_difference(block.second, hole.second);
   } else if (k == 1) {  // a block with a boss on its top face
     const double r = in(0.15, 0.45) * std::min(a, b) * 0.5;
-    const Eigen::Vector3d ctr(in(r + 0.05, a - r - 0.05), in(r + 0.05, b - r - 0.05), c);
+    const double cy = in(r + 0.05, b - r - 0.05), cx = in(r + 0.05, a - r - 0.05);
+    const Eigen::Vector3d ctr(cx, cy, c);
     const auto boss = cylinder_z(ctr, r, in(0.2, 0.8));
     shape = BRepAlgoAPI_Fuse(block.first, boss.first).Shape();
     orbit = orbit_union({block.second, boss.second});
   } else if (k == 2) {  // an L-bracket: a block without a corner strip
-    const auto notch = box(Eigen::Vector3d(in(0.25, 0.6) * a, -0.1, in(0.3, 0.7) * c), Eigen::Vector3d(a + 0.1, b + 0.1, c + 0.1));
+    const double nz = in(0.3, 0.7) * c, nx = in(0.25, 0.6) * a;
+    const auto notch = box(Eigen::Vector3d(nx, -0.1, nz), Eigen::Vector3d(a + 0.1, b + 0.1, c + 0.1));
     shape = BRepAlgoAPI_Cut(block.first, notch.first).Shape();
     orbit = orbit_difference(block.second, notch.second);
   } else if (k == 3) {  // a shaft with a collar
@@ -84,7 +89,8 @@ void part_in_own_frame(int k, In& in, TopoDS_Shape& shape, OrbitSolidPtr& orbit)
     orbit = orbit_union({shaft.second, collar.second});
   } else {  // a block with a spherical pocket in its top face
     const double r = in(0.3, 0.9) * std::min({a * 0.5, b * 0.5, c});
-    const Eigen::Vector3d ctr(in(r + 0.05, a - r - 0.05), in(r + 0.05, b - r - 0.05), c);
+    const double cy = in(r + 0.05, b - r - 0.05), cx = in(r + 0.05, a - r - 0.05);
+    const Eigen::Vector3d ctr(cx, cy, c);
     const TopoDS_Shape ball = BRepPrimAPI_MakeSphere(gp_Pnt(ctr.x(), ctr.y(), ctr.z()), r).Shape();
     shape = BRepAlgoAPI_Cut(block.first, ball).Shape();
     orbit = orbit_difference(block.second, orbit_sphere(ctr, r));
@@ -101,7 +107,8 @@ inline RandomPart random_part_case(std::uint64_t seed, int index) {
   const auto num = fixed6;
   auto unit = [&]() {
     for (;;) {
-      const Eigen::Vector3d v(in(-1, 1), in(-1, 1), in(-1, 1));
+      const double z = in(-1, 1), y = in(-1, 1), x = in(-1, 1);
+      const Eigen::Vector3d v(x, y, z);
       if (v.norm() > 0.2 && v.norm() <= 1) return Eigen::Vector3d(v.normalized());
     }
   };
@@ -113,8 +120,11 @@ inline RandomPart random_part_case(std::uint64_t seed, int index) {
   detail::part_in_own_frame(family, in, local, local_orbit);
   // a random pose, the part's origin within the unit cube about the origin
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  pose.linear() = Eigen::AngleAxisd(in(0, M_PI), unit()).toRotationMatrix();
-  pose.translation() = Eigen::Vector3d(in(-1, 0.5), in(-1, 0.5), in(-1, 0.5));
+  const Eigen::Vector3d turn_axis = unit();
+  const double turn = in(0, M_PI);
+  pose.linear() = Eigen::AngleAxisd(turn, turn_axis).toRotationMatrix();
+  const double tz = in(-1, 0.5), ty = in(-1, 0.5), tx = in(-1, 0.5);
+  pose.translation() = Eigen::Vector3d(tx, ty, tz);
   gp_Trsf trsf;
   const Eigen::Matrix3d& R = pose.linear();
   const Eigen::Vector3d& t = pose.translation();
@@ -123,7 +133,8 @@ inline RandomPart random_part_case(std::uint64_t seed, int index) {
   p.orbit = orbit_placed(local_orbit, pose);
   // the joint: as for the primitives
   const double reach = random_axis_reach(u);
-  const Eigen::Vector3d point(in(-reach, reach), in(-reach, reach), in(-reach, reach));
+  const double pz = in(-reach, reach), py = in(-reach, reach), px = in(-reach, reach);
+  const Eigen::Vector3d point(px, py, pz);
   const std::string direction = uni(rng) < 0.3 ? "[0, 0, 1]" : vec_json(unit());
   const std::string type = kRandomJoints[(index / kPartFamilyCount) % 3];
   p.joint = "{\"type\": \"" + type + "\", \"point\": " + vec_json(point) + ", \"direction\": " + direction +
