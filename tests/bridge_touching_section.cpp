@@ -8,6 +8,11 @@
 #include <BRepExtrema_DistShapeShape.hxx>
 #include <BRepGProp.hxx>
 #include <BRepPrimAPI_MakeCone.hxx>
+#include <BRepPrimAPI_MakeCylinder.hxx>
+#include <BRepPrimAPI_MakeSphere.hxx>
+#include <BRepBuilderAPI_MakeFace.hxx>
+#include <Geom_Line.hxx>
+#include <gp_Pln.hxx>
 #include <BRepPrimAPI_MakeTorus.hxx>
 #include <BRep_Builder.hxx>
 #include <BRep_Tool.hxx>
@@ -172,4 +177,48 @@ TEST_CASE("Two tori cross where OCCT finds it: the zero set of one's exact dista
   // a face on no torus is left to the caller
   const TopoDS_Face cone = face_of_kind(BRepPrimAPI_MakeCone(1.0, 0.5, 2.0).Shape(), GeomAbs_Cone);
   CHECK_FALSE(torus_section(a, cone, tol, size, &fit_err));
+}
+
+TEST_CASE("A helical sweep crosses planes, cylinders, cones and spheres where OCCT finds it: the zero set of their exact distance", "[touching]") {
+  // a segment screwed a quarter turn (one fitted face) and faces of the four kinds across it, as
+  // copies of a body are across the sweeps of its edges: the traced curves lie on both faces and
+  // have OCCT's length
+  ScrewJoint j;
+  j.type = JointType::Helical;
+  j.point = Eigen::Vector3d(0.1, -0.2, 0);
+  j.direction = Eigen::Vector3d(0.1, 0.05, 1).normalized();
+  j.pitch = 0.3;
+  const double size = 3, tol = 1e-7 * size;
+  const Handle(Geom_Curve) segment = new Geom_Line(gp_Pnt(1, 0, -0.5), gp_Dir(gp_Vec(0.5, 0.2, 1.1)));
+  double err = 0;
+  const std::vector<TopoDS_Face> sweep = sweep_curve(segment, 0.0, 1.2, j, M_PI / 2, 1e-7, &err);
+  REQUIRE(sweep.size() == 1);
+  const TopoDS_Face a = sweep.front();
+  REQUIRE(BRepAdaptor_Surface(a).GetType() == GeomAbs_BSplineSurface);
+  const std::vector<TopoDS_Face> across = {
+      BRepBuilderAPI_MakeFace(gp_Pln(gp_Pnt(0, 0, 0.3), gp_Dir(0.2, -0.1, 1)), -3, 3, -3, 3).Face(),
+      face_of_kind(BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(-1, 0.8, 0.1), gp_Dir(1, 0.1, 0.05)), 0.5, 3).Shape(), GeomAbs_Cylinder),
+      face_of_kind(BRepPrimAPI_MakeCone(gp_Ax2(gp_Pnt(0.3, 1.6, -1), gp_Dir(0.1, -0.2, 1)), 0.9, 0.3, 2.5).Shape(), GeomAbs_Cone),
+      face_of_kind(BRepPrimAPI_MakeSphere(gp_Pnt(0.2, 1.2, 0.2), 0.6).Shape(), GeomAbs_Sphere)};
+  for (std::size_t k = 0; k < across.size(); ++k) {
+    INFO("face " << k);
+    double fit_err = 0;
+    const auto edges = spline_section(a, across[k], tol, size, &fit_err);
+    REQUIRE(edges);
+    REQUIRE(!edges->empty());
+    CHECK(fit_err <= tol);
+    const double ours = length_on_both(*edges, a, across[k], size);
+    BRepAlgoAPI_Section sec(a, across[k], false);
+    sec.Approximation(true);
+    sec.Build();
+    REQUIRE(sec.IsDone());
+    CHECK(ours == Approx(length(sec.Shape())).epsilon(1e-4));
+  }
+  // a face with a side on the other's surface (a sweep starting in the plane), and a face that is
+  // no spline, are left to the caller
+  const gp_Pnt p0 = segment->Value(0.0), p1 = segment->Value(1.2);
+  const gp_Pln through(p0, gp_Vec(p0, p1).Crossed(gp_Vec(0.3, 1, 0.2)));
+  const TopoDS_Face plane = BRepBuilderAPI_MakeFace(through, -4, 4, -4, 4).Face();
+  CHECK_FALSE(spline_section(a, plane, tol, size, &err));
+  CHECK_FALSE(spline_section(across[1], across[0], tol, size, &err));
 }

@@ -684,14 +684,16 @@ Crossings crossings_of(const std::vector<Candidate>& cands, BoundaryContext& c) 
           return;
         }
       }
-      // a face on a torus: the zero set of its exact distance over the other face (OCCT's section
-      // of two tori walks for seconds)
-      for (const bool b_torus : {true, false}) {
-        if (!settings.torus_sections) break;
-        const TopoDS_Face& on = b_torus ? fa : fb;
-        const TopoDS_Face& torus = b_torus ? fb : fa;
+      // a face on a torus, or a fitted sweep and a face on an elementary surface: the zero set of
+      // the one's exact distance over the other face (OCCT's section of two tori walks for seconds,
+      // of a helical sweep and a copy of the body for 0.2 s)
+      for (const bool b_traced : {true, false}) {
+        const TopoDS_Face& on = b_traced ? fa : fb;
+        const TopoDS_Face& other = b_traced ? fb : fa;
         double err = 0;
-        const auto traced = torus_section(on, torus, fit_tol, size, &err);
+        std::optional<std::vector<TopoDS_Edge>> traced;
+        if (settings.torus_sections) traced = torus_section(on, other, fit_tol, size, &err);
+        if (!traced && settings.spline_sections) traced = spline_section(on, other, fit_tol, size, &err);
         if (!traced) continue;
         for (const TopoDS_Edge& e : *traced) {
           const int sides = (on_boundary(e, fa, boundary_tol) ? 0 : 1) | (on_boundary(e, fb, boundary_tol) ? 0 : 2);

@@ -14,6 +14,8 @@
 #include <Geom_BSplineCurve.hxx>
 #include <ShapeAnalysis_Surface.hxx>
 #include <TColgp_Array1OfPnt.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopoDS.hxx>
 #include <gp_Cone.hxx>
 #include <gp_Cylinder.hxx>
 #include <gp_Pln.hxx>
@@ -264,9 +266,12 @@ std::optional<std::vector<TopoDS_Edge>> touching_section(const TouchingSweep& sw
   return edges;
 }
 
-std::optional<std::vector<TopoDS_Edge>> torus_section(const TopoDS_Face& a, const TopoDS_Face& b, double tol,
-                                                      double size, double* fit_err) {
-  if (BRepAdaptor_Surface(b).GetType() != GeomAbs_Torus) return std::nullopt;
+namespace {
+
+/// The curves where face `a` crosses face `b`: the zero set of b's signed distance over a's
+/// parameters, cut to both faces and fitted to within `tol`.
+std::optional<std::vector<TopoDS_Edge>> section_by_distance(const TopoDS_Face& a, const TopoDS_Face& b, double tol,
+                                                            double size, double* fit_err) {
   const auto dist = distance_function(b);
   const BRepAdaptor_Surface S(a);
   double u0, u1, v0, v1;
@@ -288,6 +293,47 @@ std::optional<std::vector<TopoDS_Edge>> torus_section(const TopoDS_Face& a, cons
       if (!fitted_edges(r, h, at, tol, size, 0.0, 4, edges, fit_err)) return std::nullopt;
   }
   return edges;
+}
+
+/// Whether an edge of face `a` lies on the surface of `b` (at five of its points, within `eps`).
+bool has_edge_on(const TopoDS_Face& a, const TopoDS_Face& b, double eps) {
+  const auto dist = distance_function(b);
+  for (TopExp_Explorer ex(a, TopAbs_EDGE); ex.More(); ex.Next()) {
+    double f, l;
+    const Handle(Geom_Curve) c = BRep_Tool::Curve(TopoDS::Edge(ex.Current()), f, l);
+    if (c.IsNull()) continue;
+    bool on = true;
+    for (int k = 0; k <= 4 && on; ++k) on = std::abs(dist(c->Value(f + (l - f) * k / 4))) <= eps;
+    if (on) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+std::optional<std::vector<TopoDS_Edge>> torus_section(const TopoDS_Face& a, const TopoDS_Face& b, double tol,
+                                                      double size, double* fit_err) {
+  if (BRepAdaptor_Surface(b).GetType() != GeomAbs_Torus) return std::nullopt;
+  return section_by_distance(a, b, tol, size, fit_err);
+}
+
+std::optional<std::vector<TopoDS_Edge>> spline_section(const TopoDS_Face& a, const TopoDS_Face& b, double tol,
+                                                       double size, double* fit_err) {
+  if (BRepAdaptor_Surface(a).GetType() != GeomAbs_BSplineSurface) return std::nullopt;
+  switch (BRepAdaptor_Surface(b).GetType()) {
+    case GeomAbs_Plane:
+    case GeomAbs_Cylinder:
+    case GeomAbs_Cone:
+    case GeomAbs_Sphere:
+    case GeomAbs_Torus:
+      break;
+    default:
+      return std::nullopt;
+  }
+  // (a side of a on b's surface, as where a curve's sweep starts on the face it bounds: the
+  // distance vanishes along it, and its zero set there is no crossing)
+  if (has_edge_on(a, b, 1e-7 * size)) return std::nullopt;
+  return section_by_distance(a, b, tol, size, fit_err);
 }
 
 }  // namespace sweep::occt

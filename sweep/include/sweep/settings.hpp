@@ -70,6 +70,10 @@ struct Settings {
   /// vanishes over the other face's parameters: traced so (off: OCCT's general section, which walks
   /// for seconds on two tori).
   bool torus_sections = true;
+  /// A fitted sweep crossing a face on a plane, cylinder, cone or sphere (a copy of the body) crosses
+  /// it where that surface's exact distance vanishes over the sweep's parameters: traced so (off:
+  /// OCCT's general section, 0.2 s a pair under a helical joint).
+  bool spline_sections = true;
 
   // --- grazing sets followed over a motion's range (grazing_family.hpp)
   /// Events of a grazing set are located by bisection to this fraction of the range.
