@@ -248,10 +248,10 @@ TEST_CASE("Random cases: a box screwed whose grazing line ends next to a corner 
   // a box screwed about an oblique axis (case 48 of the CI table): a face's grazing line ends on an
   // edge 0.0028 from a corner. The profiles of that line's and the edge's sweeps touch where they
   // meet (the line's is the fold of the face's), and the other edge from the corner crosses the
-  // edge's sweep at an angle of 4e-4 radians, 0.0043 further on: the strip between is boundary,
-  // but the grazing sheet lies closer to it than the classification's offset, whose probes both
-  // landed beyond it. The boundary did not close, and the cells lost half the solid (failed on its
-  // geometric error, 14 s).
+  // edge's sweep at an angle of 4e-4 radians, 0.0043 further on. The strip of the edge's sweep
+  // between lies inside the solid, but that other sweep lies closer to it than the classification's
+  // offset: both probes landed beyond it, the strip was kept and the boundary did not close, and
+  // the cells lost half the solid (failed on its geometric error, 14 s).
   const TableRow row = table_row("box_helical_48");
   std::vector<std::string> steps;
   const occt::RunResult r = run_row(row, &steps);

@@ -979,7 +979,7 @@ void sew_kept(const std::vector<Piece>& all, std::vector<int> keep, BoundaryCont
   fix.Init(ms.Solid());
   fix.Perform();
   out.solid = merged_analytic_faces(fix.Solid());
-  out.seconds["sewing"] = since(t_sew);
+  out.seconds["sewing"] = out.seconds.value("sewing", 0.0) + since(t_sew);
 }
 
 }  // namespace
