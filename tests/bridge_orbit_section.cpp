@@ -107,6 +107,15 @@ double distance(const TopoDS_Shape& a, const TopoDS_Shape& b) {
   return d.Value();
 }
 
+/// The one face that edge `e` sweeps under joint j over [0, T] (fitted to `tol`, its error to *err).
+TopoDS_Face one_face_sweep(const TopoDS_Edge& e, const ScrewJoint& j, double T, double tol, double* err) {
+  double f, l;
+  const Handle(Geom_Curve) c = BRep_Tool::Curve(e, f, l);
+  const std::vector<TopoDS_Face> faces = occt::sweep_curve(c, f, l, j, T, tol, err);
+  REQUIRE(faces.size() == 1);
+  return faces.front();
+}
+
 }  // namespace
 
 TEST_CASE("Orbit sections: crossing meridians give the arcs over the overlap of the angle ranges") {
@@ -204,13 +213,7 @@ TEST_CASE("Orbit sections: helical sweeps of curves through one point cross alon
   const gp_Pnt P(1.5, 0.15, 0.05);
   const TopoDS_Edge line = BRepBuilderAPI_MakeEdge(gp_Pnt(1, 0, -0.45), gp_Pnt(2, 0.3, 0.55)).Edge();
   const TopoDS_Edge bent = spline_through({gp_Pnt(1.2, -0.4, 0.3), P, gp_Pnt(2.0, 0.5, -0.2)});
-  auto swept = [&](const TopoDS_Edge& e, double* err) {
-    double f, l;
-    const Handle(Geom_Curve) c = BRep_Tool::Curve(e, f, l);
-    const std::vector<TopoDS_Face> faces = occt::sweep_curve(c, f, l, j, T, tol, err);
-    REQUIRE(faces.size() == 1);
-    return faces.front();
-  };
+  auto swept = [&](const TopoDS_Edge& e, double* err) { return one_face_sweep(e, j, T, tol, err); };
   double err = 0;
   const TopoDS_Face a = swept(line, &err), b = swept(bent, &err);
   const double btol = std::max(100 * eps, 10 * err);
@@ -279,13 +282,7 @@ TEST_CASE("Orbit sections: helical sweeps of a grazing line and an edge from its
   REQUIRE(E.X() == Approx(0.32309).margin(1e-5));
   const TopoDS_Edge line = BRepBuilderAPI_MakeEdge(E, F).Edge();
   const TopoDS_Edge edge = BRepBuilderAPI_MakeEdge(E, gp_Pnt(x1, y, z0)).Edge();
-  auto swept = [&](const TopoDS_Edge& e, double* err) {
-    double f, l;
-    const Handle(Geom_Curve) c = BRep_Tool::Curve(e, f, l);
-    const std::vector<TopoDS_Face> faces = occt::sweep_curve(c, f, l, j, T, tol, err);
-    REQUIRE(faces.size() == 1);
-    return faces.front();
-  };
+  auto swept = [&](const TopoDS_Edge& e, double* err) { return one_face_sweep(e, j, T, tol, err); };
   double err = 0;
   const TopoDS_Face a = swept(line, &err), b = swept(edge, &err);
   const double btol = std::max(100 * eps, 10 * err);
