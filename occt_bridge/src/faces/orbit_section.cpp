@@ -417,7 +417,7 @@ std::vector<double> profile_self_crossings(const OrbitPatch& patch, const ScrewJ
       if (std::abs(bb - ba) < step) continue;
       const ProfilePoint A = profile(p, ax, ba), B = profile(p, ax, bb);
       const double sine = std::abs(A.dm(0) * B.dm(1) - A.dm(1) * B.dm(0)) / (A.dm.norm() * B.dm.norm());
-      if (!(sine >= 1e-3)) continue;
+      if (!(sine >= Settings::orbit_section_min_sine)) continue;
       // where the two sheets meet over a common range of the orbits
       const auto [sa, la] = orbit_range(p, ax, ba);
       const auto [sb, lb] = orbit_range(p, ax, bb);
@@ -522,7 +522,7 @@ std::optional<std::vector<TopoDS_Edge>> orbit_section(const OrbitPatch& patch_a,
       if (in_shared_end_contact(a, b, ax, ba, bb, boundary_tol)) continue;
       if (ax.turning && A.m(0) <= boundary_tol) continue;  // on the axis
       const double sine = std::abs(A.dm(0) * B.dm(1) - A.dm(1) * B.dm(0)) / (A.dm.norm() * B.dm.norm());
-      if (!(sine >= 1e-3)) return std::nullopt;  // tangent or nearly so
+      if (!(sine >= Settings::orbit_section_min_sine)) return std::nullopt;  // tangent or nearly so
       interior.push_back({ba, bb, A.m});
     }
   }

@@ -248,9 +248,10 @@ std::optional<std::vector<TopoDS_Edge>> touching_section(const TouchingSweep& sw
     const double h1 = h_raw(p.x(), tau), h0 = 2 * h1 - h_raw(p.x(), 2 * tau);
     return h0 + (h1 - h0) * dt / tau;
   };
-  const auto chains = contour_chains(h, sw.first, sw.last, 0, sw.T, 60, 60, 1e-12 * size);
+  const int grid = Settings::traced_section_grid;
+  const auto chains = contour_chains(h, sw.first, sw.last, 0, sw.T, grid, grid, 1e-12 * size);
   FaceMembership member(copy);
-  const double stray = 1e-6 * size;
+  const double stray = Settings::traced_section_stray * size;
   std::vector<TopoDS_Edge> edges;
   for (const auto& chain : chains) {
     const std::vector<UV> dense = densified(h, chain);
@@ -279,10 +280,11 @@ std::optional<std::vector<TopoDS_Edge>> section_by_distance(const TopoDS_Face& a
   if (!(u1 > u0) || !(v1 > v0)) return std::nullopt;
   const std::function<gp_Pnt(const UV&)> at = [&](const UV& p) { return S.Value(p.x(), p.y()); };
   const ContourFunction h = [&](const UV& p) { return dist(at(p)); };
-  const auto chains = contour_chains(h, u0, u1, v0, v1, 60, 60, 1e-12 * size);
+  const int grid = Settings::traced_section_grid;
+  const auto chains = contour_chains(h, u0, u1, v0, v1, grid, grid, 1e-12 * size);
   BRepTopAdaptor_FClass2d in_a(a, 1e-9 * std::max(u1 - u0, v1 - v0));
   FaceMembership in_b(b);
-  const double stray = 1e-6 * size;
+  const double stray = Settings::traced_section_stray * size;
   auto good = [&](const UV& p) {
     return std::abs(h(p)) <= stray && in_a.Perform(gp_Pnt2d(p.x(), p.y())) != TopAbs_OUT && in_b.contains(at(p));
   };
@@ -332,7 +334,7 @@ std::optional<std::vector<TopoDS_Edge>> spline_section(const TopoDS_Face& a, con
   }
   // (a side of a on b's surface, as where a curve's sweep starts on the face it bounds: the
   // distance vanishes along it, and its zero set there is no crossing)
-  if (has_edge_on(a, b, 1e-7 * size)) return std::nullopt;
+  if (has_edge_on(a, b, Settings::traced_section_side_on * size)) return std::nullopt;
   return section_by_distance(a, b, tol, size, fit_err);
 }
 

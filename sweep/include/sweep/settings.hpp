@@ -74,6 +74,16 @@ struct Settings {
   /// it where that surface's exact distance vanishes over the sweep's parameters: traced so (off:
   /// OCCT's general section, 0.2 s a pair under a helical joint).
   bool spline_sections = true;
+  /// Traced crossings (touching, torus and spline sections): the grid of the contour search over
+  /// the traced face's parameters (per side), how far (x size) a traced point may lie from the
+  /// other surface and still be on the crossing, and within what distance (x size) a side of the
+  /// traced face lies on the other surface (the distance vanishes along it: no crossing is traced).
+  static constexpr int traced_section_grid = 60;
+  static constexpr double traced_section_stray = 1e-6;
+  static constexpr double traced_section_side_on = 1e-7;
+  /// Profiles that meet at a smaller sine of their angle are left to OCCT's general section (their
+  /// crossing is too ill-conditioned to place along the profiles).
+  static constexpr double orbit_section_min_sine = 1e-3;
 
   // --- grazing sets followed over a motion's range (grazing_family.hpp)
   /// Events of a grazing set are located by bisection to this fraction of the range.
