@@ -168,13 +168,14 @@ bool same_surface(const TopoDS_Face& a, const TopoDS_Face& b, double eps) {
   if (A.GetType() != B.GetType()) return false;
   auto same_point = [&](const gp_Pnt& p, const gp_Pnt& q) { return p.Distance(q) <= eps; };
   auto same_axis = [&](const gp_Ax1& x, const gp_Ax1& y) {
-    return x.Direction().IsParallel(y.Direction(), 1e-9) &&
+    return x.Direction().IsParallel(y.Direction(), Settings::parallel_angle) &&
            gp_Lin(x).Distance(y.Location()) <= eps;
   };
   switch (A.GetType()) {
     case GeomAbs_Plane: {
       const gp_Pln p = A.Plane(), q = B.Plane();
-      return p.Axis().Direction().IsParallel(q.Axis().Direction(), 1e-9) && p.Distance(q.Location()) <= eps;
+      return p.Axis().Direction().IsParallel(q.Axis().Direction(), Settings::parallel_angle) &&
+             p.Distance(q.Location()) <= eps;
     }
     case GeomAbs_Cylinder:
       return same_axis(A.Cylinder().Axis(), B.Cylinder().Axis()) &&
@@ -185,7 +186,7 @@ bool same_surface(const TopoDS_Face& a, const TopoDS_Face& b, double eps) {
     case GeomAbs_Cone: {
       const gp_Cone c = A.Cone(), d = B.Cone();
       return same_axis(c.Axis(), d.Axis()) && same_point(c.Apex(), d.Apex()) &&
-             std::abs(c.SemiAngle() - d.SemiAngle()) <= 1e-9;
+             std::abs(c.SemiAngle() - d.SemiAngle()) <= Settings::parallel_angle;
     }
     case GeomAbs_Torus: {
       const gp_Torus t = A.Torus(), u = B.Torus();
@@ -307,11 +308,11 @@ bool same_domain(GeomAbs_SurfaceType type, const gp_Ax3& a, double sa, const gp_
   if (std::abs(sa - sb) > tol) return false;
   const gp_Vec d(a.Location(), b.Location());
   if (type == GeomAbs_Sphere) return d.Magnitude() <= tol;
-  if (!a.Direction().IsParallel(b.Direction(), 1e-9)) return false;
+  if (!a.Direction().IsParallel(b.Direction(), Settings::parallel_angle)) return false;
   const gp_Vec z(a.Direction());
   if (type == GeomAbs_Plane) return std::abs(d.Dot(z)) <= tol;
   if (type == GeomAbs_Cone || type == GeomAbs_Torus)  // one apex or centre, one orientation of the axis
-    return d.Magnitude() <= tol && a.Direction().IsEqual(b.Direction(), 1e-9);
+    return d.Magnitude() <= tol && a.Direction().IsEqual(b.Direction(), Settings::parallel_angle);
   return d.Crossed(z).Magnitude() <= tol;
 }
 
@@ -590,7 +591,7 @@ void group_by_surface(std::vector<Candidate>& cands, BoundaryContext& c) {
     }
     cands.swap(merged);
   }
-  c.boundary_tol = std::max(100 * eps, 10 * out.fit_error);
+  c.boundary_tol = std::max(100 * eps, Settings::fit_error_margin * out.fit_error);
   if (settings.orbit_sections) cands = cut_where_through_itself(cands, j, eps, c.boundary_tol);
   out.candidates = int(cands.size());
   out.seconds["groups"] = since(t_groups);
@@ -829,7 +830,7 @@ std::vector<int> classify_pieces(const std::vector<Piece>& all, const PointTestM
   BoundarySweep& out = c.out;
   const auto t_cls = Clock::now();
   const double delta = settings.classify_offset * size;
-  const double finest = std::max(settings.classify_finest_offset * size, 10 * out.fit_error);
+  const double finest = std::max(settings.classify_finest_offset * size, Settings::fit_error_margin * out.fit_error);
   // 1 keep as is, -1 keep reversed, 0 drop, 2 undecided
   std::vector<int> keep(all.size(), 0);
   parallel_for(all.size(), [&]() -> std::function<void(std::size_t)> {
@@ -906,7 +907,7 @@ void sew_kept(const std::vector<Piece>& all, std::vector<int> keep, BoundaryCont
   BoundarySweep& out = c.out;
   // 6. The kept pieces, oriented outward, sewn into a solid.
   const auto t_sew = Clock::now();
-  double gap = std::max(Settings::sewing_gap * size, 10 * out.fit_error);
+  double gap = std::max(Settings::sewing_gap * size, Settings::fit_error_margin * out.fit_error);
   auto sew = [&](std::unique_ptr<BRepBuilderAPI_Sewing>& sewing) {
     sewing = std::make_unique<BRepBuilderAPI_Sewing>(gap);
     out.candidate_faces.clear();

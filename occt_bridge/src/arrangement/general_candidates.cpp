@@ -170,7 +170,7 @@ Candidates general_candidates(const Entity& entity, const std::shared_ptr<const 
     }
   }
   const double lo = motion->lo(), hi = motion->hi(), at_end = 1e-12 * (hi - lo);
-  const double fuzzy = std::max(Settings::sewing_gap * size, 10 * fit_err);
+  const double fuzzy = std::max(Settings::sewing_gap * size, Settings::fit_error_margin * fit_err);
   // an envelope sheet whose arc ends on a side of its face meets the sweep of the edge there
   // tangentially (both are tangent to the moving face): the edge sweeps are split along the
   // sheets' edges, so that the two meet on an edge of each

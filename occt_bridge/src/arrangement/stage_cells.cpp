@@ -318,7 +318,7 @@ TopoDS_Shape cells_solid(const PointTestMaker& member, double size, double fit_e
   // just off both of its sides. When those leave free edges where candidates that pruning dropped
   // lie (a thin strip of boundary on a face that is internal almost everywhere), such candidates
   // are restored and the arrangement is made again, at most three times.
-  const double fuzzy = std::max(Settings::sewing_gap * size, 10 * fit_err);
+  const double fuzzy = std::max(Settings::sewing_gap * size, Settings::fit_error_margin * fit_err);
   BOPAlgo_MakerVolume mv;
   TopoDS_Shape result;
   std::string arrangement_error;

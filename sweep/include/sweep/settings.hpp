@@ -30,6 +30,13 @@ struct Settings {
   /// Faces are sewn, and cells fused, across gaps up to this (x size), or a multiple of the fit
   /// error when that is larger.
   static constexpr double sewing_gap = 1e-7;
+  /// How many measured fit errors apart two fitted curves or surfaces may lie and still meet: the
+  /// sewing gap, the arrangement's fuzzy value and how far a section may lie from a face's boundary
+  /// grow to this many fit errors, and the closest classification offset stays above it.
+  static constexpr double fit_error_margin = 10;
+  /// Two directions within this angle (radians) are parallel: axes of surfaces on one line, planes
+  /// of one orientation, cones of one semi-angle.
+  static constexpr double parallel_angle = 1e-9;
 
   /// Linear deflection of the triangulation behind a B-rep solid's distance bound (x the entity's
   /// size; the bound's slack is measured on it).
