@@ -6,7 +6,8 @@
 // moves into), and (4) for faces the motion slides within (n . v = 0 everywhere), the regions they
 // sweep in their own surface. These candidates are split where they cross each other, and a piece
 // is kept where one side of it is in the swept set and the other is not (by a membership test that
-// does not use the candidates); the kept pieces are sewn into the solid.
+// does not use the candidates); the kept pieces are sewn into the solid, which fails unless it
+// closes (as it is or healed) and is valid as it is.
 #include <string>
 #include <vector>
 

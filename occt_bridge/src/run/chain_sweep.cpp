@@ -3,7 +3,6 @@
 // curves sweep curves and surfaces. What they build goes to run_sweep, which judges it, and to
 // the segments of keyframe motions, whose union is judged once.
 #include <BRepBndLib.hxx>
-#include <BRepCheck_Analyzer.hxx>
 #include <Bnd_Box.hxx>
 #include <TopExp_Explorer.hxx>
 #include <algorithm>
@@ -49,17 +48,6 @@ TopoDS_Shape entity_stage(const StageInput& in, const OrbitSolidPtr& orbit_entit
   auto boundary = [&](const Settings& settings) {
     BoundarySweep b = boundary_sweep(in.body, j, T, stage_member, in.size, in.tol, settings, in.stage, in.joint_no);
     merge_step_seconds(record.seconds, b.seconds);
-    if (!b.solid.IsNull() && !closed_solids(b.solid) && !closed_solids(healed(b.solid))) {
-      b.failure = "the pieces of its sweep boundary do not close";
-      b.solid.Nullify();
-    }
-    // a boundary that only OCCT's healing makes a valid solid is not taken: kept pieces that overlap
-    // or leave a hole come back closed from it, but not as the swept set (an L-bracket turned about a
-    // skew axis came back 0.5 % too large); the cells are classified one by one instead
-    if (!b.solid.IsNull() && !BRepCheck_Analyzer(b.solid).IsValid()) {
-      b.failure = "the pieces of its sweep boundary do not make a valid solid";
-      b.solid.Nullify();
-    }
     return b;
   };
   BoundarySweep b = boundary(opt.settings);
