@@ -21,6 +21,7 @@
 #include "verdict/verdict.hpp"
 #include "base/internal.hpp"
 #include "occt_bridge/sweeper.hpp"
+#include "util/random_one_joint.hpp"
 
 using namespace sweep;
 using namespace sweep::occt;
@@ -189,13 +190,9 @@ struct TurnedCylinder {
 const TurnedCylinder& turned_cylinder() {
   static const TurnedCylinder c = [] {
     TurnedCylinder t;
-    // (the spec as written: case 56 of the CI table)
-    t.spec = parse_spec(R"json({"sweep": 1, "name": "cylinder_revolute_56", "angles": "deg",
-        "entity": {"kind": "cylinder", "base": [-0.407846, -0.228860, 0.564349], "axis": [-0.548748, 0.582397, -0.599742],
-                   "radius": 0.491327, "height": 1.330249},
-        "motion": {"kind": "axes", "joints": [{"type": "revolute", "point": [0.452142, 1.253710, 0.215107],
-                   "direction": [0.884148, -0.117231, 0.452259], "range": [0, 223.940305]}]}})json",
-                        ".");
+    const testing::RandomCase rc = testing::random_one_joint_case(41, 56);
+    REQUIRE(rc.name == "cylinder_revolute_56");
+    t.spec = parse_spec(rc.spec, ".");
     t.run = occt::run_sweep(t.spec);
     REQUIRE(t.run.report.ok());
     REQUIRE(t.run.shape);
