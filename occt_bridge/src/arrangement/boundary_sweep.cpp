@@ -679,7 +679,7 @@ Crossings crossings_of(const std::vector<Candidate>& cands, BoundaryContext& c) 
       }
       if (carried[pairs[k].first] && carried[pairs[k].second]) {
         if (auto arcs = orbit_section(*carried[pairs[k].first], *carried[pairs[k].second], j, boundary_tol,
-                                      &pair_refit_error[k])) {
+                                      &pair_refit_error[k], tol)) {
           pair_edges[k] = std::move(*arcs);
           pair_sides[k].assign(pair_edges[k].size(), 3);
           return;

@@ -309,7 +309,9 @@ std::optional<TopoDS_Edge> helix_section(const Carried& a, const Carried& b, con
 /// body, one a grazing curve, whose profiles touch there (the grazing curve's profile is the fold
 /// of its face's, and the other curve's leaves it tangentially). A solver at such a touching point
 /// stops short of the end, where the profiles are closer than `tol` but meet at no angle; the
-/// profiles are then within `tol` all the way to the shared end.
+/// profiles are then within `tol` all the way to the shared end. (Two arms of a profile's cusp at a
+/// shared end also run together into it: a solver may find them touching, at no angle, within
+/// the fit error of the end.)
 bool in_shared_end_contact(const Carried& a, const Carried& b, const OrbitFrame& ax, double ba, double bb, double tol) {
   for (const double ea : {a.b0, a.b1})
     for (const double eb : {b.b0, b.b1}) {
@@ -456,7 +458,8 @@ TopoDS_Face on_own_sheet(const TopoDS_Face& piece, const Handle(Geom_Surface)& s
 }
 
 std::optional<std::vector<TopoDS_Edge>> orbit_section(const OrbitPatch& patch_a, const OrbitPatch& patch_b,
-                                                      const ScrewJoint& j, double boundary_tol, double* fit_err) {
+                                                      const ScrewJoint& j, double boundary_tol, double* fit_err,
+                                                      double contact_band) {
   const OrbitFrame ax(j);
   const Carried a(patch_a), b(patch_b);
   constexpr int N = kSamples;
@@ -522,7 +525,11 @@ std::optional<std::vector<TopoDS_Edge>> orbit_section(const OrbitPatch& patch_a,
       if (in_shared_end_contact(a, b, ax, ba, bb, boundary_tol)) continue;
       if (ax.turning && A.m(0) <= boundary_tol) continue;  // on the axis
       const double sine = std::abs(A.dm(0) * B.dm(1) - A.dm(1) * B.dm(0)) / (A.dm.norm() * B.dm.norm());
-      if (!(sine >= Settings::orbit_section_min_sine)) return std::nullopt;  // tangent or nearly so
+      if (!(sine >= Settings::orbit_section_min_sine)) {
+        // touching within the tolerance of an end both share: that end, no crossing of its own
+        if (contact_band > boundary_tol && in_shared_end_contact(a, b, ax, ba, bb, contact_band)) continue;
+        return std::nullopt;  // tangent or nearly so
+      }
       interior.push_back({ba, bb, A.m});
     }
   }

@@ -65,8 +65,11 @@ TopoDS_Face on_own_sheet(const TopoDS_Face& piece, const Handle(Geom_Surface)& s
 /// small angle: the caller then intersects the faces in general. Under a helical joint the arcs
 /// are the curves where the faces' own (fitted) surfaces cross along those helices, each within
 /// a tenth of `boundary_tol` of both (the largest such distance goes to *fit_err when given).
-/// Safe to call from several threads at once.
+/// Profiles that touch at a small angle but run within `contact_band` of each other from there
+/// into an end they share (two arms of a cusp of the grazing curve's profile) meet at that end
+/// only: a crossing between them is below the tolerance. Safe to call from several threads at once.
 std::optional<std::vector<TopoDS_Edge>> orbit_section(const OrbitPatch& a, const OrbitPatch& b, const ScrewJoint& j,
-                                                      double boundary_tol, double* fit_err = nullptr);
+                                                      double boundary_tol, double* fit_err = nullptr,
+                                                      double contact_band = 0);
 
 }  // namespace sweep::occt
