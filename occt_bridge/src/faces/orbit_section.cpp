@@ -304,6 +304,33 @@ std::optional<TopoDS_Edge> helix_section(const Carried& a, const Carried& b, con
   return std::nullopt;
 }
 
+/// The pairs of profile parameters (ba < bb) where the patch's profile crosses itself at an angle
+/// (two places of the profile, not one: a solve that slides together, as next to a cusp, is none).
+std::vector<std::pair<double, double>> self_crossing_pairs(const Carried& p, const OrbitFrame& ax, double boundary_tol) {
+  constexpr int N = kSamples;
+  std::vector<Eigen::Vector2d> m;
+  const double sag = sampled_profile(p, ax, m);
+  const double near = 8 * sag + 10 * boundary_tol, step = (p.b1 - p.b0) / N;
+  const double apart = 1e-7 * std::abs(p.b1 - p.b0);
+  std::vector<std::pair<double, double>> out;
+  for (int i = 0; i < N; ++i)
+    for (int k = i + 2; k < N; ++k) {
+      const auto [s, t] = closest_on_segments(m[i], m[i + 1] - m[i], m[k], m[k + 1] - m[k]);
+      if ((m[i] + s * (m[i + 1] - m[i]) - m[k] - t * (m[k + 1] - m[k])).norm() > near) continue;
+      double ba = p.b0 + step * (i + s), bb = p.b0 + step * (k + t);
+      if (closest_profile_points(p, p, ax, ba, bb) > boundary_tol) continue;
+      if (std::abs(bb - ba) < std::abs(step)) continue;
+      const ProfilePoint A = profile(p, ax, ba), B = profile(p, ax, bb);
+      const double sine = std::abs(A.dm(0) * B.dm(1) - A.dm(1) * B.dm(0)) / (A.dm.norm() * B.dm.norm());
+      if (!(sine >= Settings::orbit_section_min_sine)) continue;
+      if (ba > bb) std::swap(ba, bb);
+      bool known = false;
+      for (const auto& [x, y] : out) known = known || (std::abs(x - ba) < apart && std::abs(y - bb) < apart);
+      if (!known) out.push_back({ba, bb});
+    }
+  return out;
+}
+
 /// Whether profile parameters ba and bb (where the profiles of a and b meet) lie where the two
 /// profiles run together into an end they share: the sweeps of two curves from one vertex of the
 /// body, one a grazing curve, whose profiles touch there (the grazing curve's profile is the fold
@@ -324,6 +351,34 @@ bool in_shared_end_contact(const Carried& a, const Carried& b, const OrbitFrame&
       if (together) return true;
     }
   return false;
+}
+
+/// Where two faces swept from one curve (pieces of one sweep, their profiles the same, or the
+/// same reversed) cross: where the profile crosses itself, a line of the one may cross a line of
+/// the other (two turns of one screwed curve's sweep), over the range along the orbits both hold
+/// there. Nothing when a crossing is not placed.
+std::optional<std::vector<TopoDS_Edge>> same_profile_crossings(const Carried& a, const Carried& b, const OrbitFrame& ax,
+                                                               bool reversed, double boundary_tol, double* fit_err) {
+  std::vector<TopoDS_Edge> out;
+  for (const auto& [x1, x2] : self_crossing_pairs(a, ax, boundary_tol))
+    for (const auto& [xa, xb] : {std::pair{x1, x2}, std::pair{x2, x1}}) {
+      const double f = (xb - a.b0) / (a.b1 - a.b0);
+      double ba = xa, bb = b.b0 + (b.b1 - b.b0) * (reversed ? 1 - f : f);
+      if (closest_profile_points(a, b, ax, ba, bb) > boundary_tol) return std::nullopt;
+      const Eigen::Vector2d m = profile(a, ax, ba).m;
+      const auto [sa, la] = orbit_range(a, ax, ba);
+      const auto [sb, lb] = orbit_range(b, ax, bb);
+      for (const auto& [start, len] : overlapping_ranges(ax, sa, la, sb, lb, ax.min_length(m, boundary_tol))) {
+        double err = 0;
+        const std::optional<TopoDS_Edge> e =
+            ax.helix ? helix_section(a, b, ax, m, ba, bb, start, len, 0.1 * boundary_tol, boundary_tol, &err)
+                     : ax.arc(m, start, len);
+        if (fit_err) *fit_err = std::max(*fit_err, err);
+        if (!e) return std::nullopt;
+        out.push_back(*e);
+      }
+    }
+  return out;
 }
 
 /// Whether a face on a surface of this type can be swept along the joint's orbits: surfaces of
@@ -404,34 +459,20 @@ std::optional<OrbitPatch> orbit_patch(const TopoDS_Face& face, const ScrewJoint&
 std::vector<double> profile_self_crossings(const OrbitPatch& patch, const ScrewJoint& j, double boundary_tol) {
   const OrbitFrame ax(j);
   const Carried p(patch);
-  constexpr int N = kSamples;
-  std::vector<Eigen::Vector2d> m;
-  const double sag = sampled_profile(p, ax, m);
-  const double near = 8 * sag + 10 * boundary_tol, step = (p.b1 - p.b0) / N;
   std::vector<double> cuts;
-  for (int i = 0; i < N; ++i)
-    for (int k = i + 2; k < N; ++k) {
-      const auto [s, t] = closest_on_segments(m[i], m[i + 1] - m[i], m[k], m[k + 1] - m[k]);
-      if ((m[i] + s * (m[i + 1] - m[i]) - m[k] - t * (m[k + 1] - m[k])).norm() > near) continue;
-      double ba = p.b0 + step * (i + s), bb = p.b0 + step * (k + t);
-      if (closest_profile_points(p, p, ax, ba, bb) > boundary_tol) continue;
-      // two places of the profile, not one (the solve slid together, as next to a cusp)
-      if (std::abs(bb - ba) < step) continue;
-      const ProfilePoint A = profile(p, ax, ba), B = profile(p, ax, bb);
-      const double sine = std::abs(A.dm(0) * B.dm(1) - A.dm(1) * B.dm(0)) / (A.dm.norm() * B.dm.norm());
-      if (!(sine >= Settings::orbit_section_min_sine)) continue;
-      // where the two sheets meet over a common range of the orbits
-      const auto [sa, la] = orbit_range(p, ax, ba);
-      const auto [sb, lb] = orbit_range(p, ax, bb);
-      if (overlapping_ranges(ax, sa, la, sb, lb, ax.min_length(A.m, boundary_tol)).empty()) continue;
-      // (and halfway between: a piece from ba to bb would begin and end on one line)
-      for (double c : {ba, 0.5 * (ba + bb), bb}) {
-        const double apart = 1e-7 * std::abs(p.b1 - p.b0);
-        bool known = std::abs(c - p.b0) < apart || std::abs(c - p.b1) < apart;
-        for (double x : cuts) known = known || std::abs(x - c) < apart;
-        if (!known) cuts.push_back(c);
-      }
+  for (const auto& [ba, bb] : self_crossing_pairs(p, ax, boundary_tol)) {
+    // where the two sheets meet over a common range of the orbits
+    const auto [sa, la] = orbit_range(p, ax, ba);
+    const auto [sb, lb] = orbit_range(p, ax, bb);
+    if (overlapping_ranges(ax, sa, la, sb, lb, ax.min_length(profile(p, ax, ba).m, boundary_tol)).empty()) continue;
+    // (and halfway between: a piece from ba to bb would begin and end on one line)
+    for (double c : {ba, 0.5 * (ba + bb), bb}) {
+      const double apart = 1e-7 * std::abs(p.b1 - p.b0);
+      bool known = std::abs(c - p.b0) < apart || std::abs(c - p.b1) < apart;
+      for (double x : cuts) known = known || std::abs(x - c) < apart;
+      if (!known) cuts.push_back(c);
     }
+  }
   std::sort(cuts.begin(), cuts.end());
   return cuts;
 }
@@ -479,7 +520,7 @@ std::optional<std::vector<TopoDS_Edge>> orbit_section(const OrbitPatch& patch_a,
     const auto [sa, la] = orbit_range(a, ax, v);
     const auto [sb, lb] = orbit_range(b, ax, 0.5 * (b.b0 + b.b1));  // (the middle sample of both)
     if (!overlapping_ranges(ax, sa, la, sb, lb, ax.min_length(m, boundary_tol)).empty()) return std::nullopt;
-    return std::vector<TopoDS_Edge>{};
+    return same_profile_crossings(a, b, ax, reversed && !same, boundary_tol, fit_err);
   }
 
   // Where the profiles meet: from every pair of sample segments that come near each other.
@@ -517,6 +558,11 @@ std::optional<std::vector<TopoDS_Edge>> orbit_section(const OrbitPatch& patch_a,
         continue;                                                // they pass near each other
       }
       const ProfilePoint A = profile(a, ax, ba), B = profile(b, ax, bb);
+      // (a solve from a start farther than `near` from the first may find the same crossing again)
+      bool again = false;
+      for (const auto& r : interior)
+        again = again || (std::abs(r.ba - ba) <= 1e-6 * std::abs(a.b1 - a.b0) && std::abs(r.bb - bb) <= 1e-6 * std::abs(b.b1 - b.b0));
+      if (again) continue;
       touches.push_back(A.m);
       auto at_end = [&](const Carried& pp, const Eigen::Vector2d& x) {
         return (profile(pp, ax, pp.b0).m - x).norm() <= boundary_tol || (profile(pp, ax, pp.b1).m - x).norm() <= boundary_tol;
