@@ -87,11 +87,25 @@ void check_touching(const Case& c, double tol, double size, int* edges_found, in
     bb.MakeCompound(swept);
     for (const auto& f : sweep) bb.Add(swept, f);
     TopLoc_Location loc;
-    const TouchingSweep ts{g.curve, g.first, g.last, c.joint, c.T, BRep_Tool::Surface(c.face, loc)};
+    std::vector<double> breaks;  // where the sweep's faces meet
+    for (int k = 1; k < occt::sweep_pieces(c.T); ++k) breaks.push_back(c.T * k / occt::sweep_pieces(c.T));
+    const TouchingSweep ts{g.curve, g.first, g.last, c.joint, c.T, BRep_Tool::Surface(c.face, loc), breaks};
     double fit_err = 0;
     const auto edges = touching_section(ts, 0.0, c.face, tol, size, &fit_err);
     REQUIRE(edges);
     CHECK(fit_err <= tol);
+    // each curve lies on one face of the sweep (the splitter takes a curve to the faces it lies on)
+    for (const TopoDS_Edge& e : *edges) {
+      double f, l;
+      const Handle(Geom_Curve) curve = BRep_Tool::Curve(e, f, l);
+      bool on_one = false;
+      for (const TopoDS_Face& face : sweep) {
+        bool on = true;
+        for (int k = 0; k <= 8 && on; ++k) on = distance(face, curve->Value(f + (l - f) * k / 8)) < 1e-6 * size;
+        on_one = on_one || on;
+      }
+      CHECK(on_one);
+    }
     *edges_found += int(edges->size());
     const double ours = length_on_both(*edges, c.face, swept, size);
     // OCCT's section of the sweep with the face: the touching curve itself, the crossings, and
@@ -151,6 +165,54 @@ TEST_CASE("A torus turned about an axis across it: the crossings of its grazing 
   check_touching(c, 1e-7, 2.6, &found, &strays);
   CHECK(found >= 2);
   CHECK(strays >= 1);  // where OCCT's section fails: a curve 0.08 off the torus, tolerance 0.12
+}
+
+TEST_CASE("A torus screwed 0.67 turns: each crossing of its grazing curves' sweeps with it lies on one face of a sweep", "[touching]") {
+  // a torus screwed about an axis beside it (case 16 of seed 47): crossings run from a sweep's first
+  // face (a third of the range) into its second. As one curve, only part of one lay on each face,
+  // and it split neither where it left the first; cut where the faces meet, each part does
+  const gp_Ax2 ax(gp_Pnt(-0.808344, 0.732250, -0.461379), gp_Dir(0.133919, 0.980484, -0.143932));
+  const TopoDS_Face face = face_of_kind(BRepPrimAPI_MakeTorus(ax, 1.332011, 0.261339).Shape(), GeomAbs_Torus);
+  ScrewJoint j;
+  j.type = JointType::Helical;
+  j.point = Eigen::Vector3d(-1.256104, -0.146814, 0.104044);
+  j.direction = Eigen::Vector3d::UnitZ();
+  j.pitch = 4.913610 / (2 * M_PI);
+  const double T = 242.597859 * M_PI / 180, size = 4.0, tol = 4e-5;
+  j.hi = T;
+  REQUIRE(occt::sweep_pieces(T) == 3);
+  int on_one = 0, on_none = 0, at_break = 0;
+  for (const auto& g : grazing_curves(face, VelocityField(j), 1e-7, size)) {
+    double err = 0;
+    const std::vector<TopoDS_Face> sweep = sweep_curve(g.curve, g.first, g.last, j, T, 1e-7, &err);
+    REQUIRE(sweep.size() == 3);
+    TopLoc_Location loc;
+    const TouchingSweep ts{g.curve, g.first, g.last, j, T, BRep_Tool::Surface(face, loc), {T / 3, 2 * T / 3}};
+    double fit_err = 0;
+    const auto edges = touching_section(ts, 0.0, face, tol, size, &fit_err);
+    if (!edges) continue;  // (left to the general section)
+    for (const TopoDS_Edge& e : *edges) {
+      double f, l;
+      const Handle(Geom_Curve) curve = BRep_Tool::Curve(e, f, l);
+      for (int k = 0; k <= 4; ++k) CHECK(distance(face, curve->Value(f + (l - f) * k / 4)) < 1e-5 * size);
+      int faces_on = 0;
+      for (const TopoDS_Face& sf : sweep) {
+        bool on = true;
+        for (int k = 0; k <= 8 && on; ++k) on = distance(sf, curve->Value(f + (l - f) * k / 8)) < 1e-5 * size;
+        faces_on += on;
+      }
+      ++(faces_on >= 1 ? on_one : on_none);
+      // an end where two faces of the sweep meet
+      for (const double x : {f, l}) {
+        int near = 0;
+        for (const TopoDS_Face& sf : sweep) near += distance(sf, curve->Value(x)) < 1e-5 * size;
+        at_break += near >= 2;
+      }
+    }
+  }
+  CHECK(on_one >= 2);
+  CHECK(on_none == 0);
+  CHECK(at_break >= 1);
 }
 
 TEST_CASE("Two tori cross where OCCT finds it: the zero set of one's exact distance over the other", "[touching]") {

@@ -501,8 +501,13 @@ std::vector<Candidate> candidates_of(const TopoDS_Shape& body, BoundaryContext& 
     // (a helical sweep's faces are fitted: the crossing traced on the exact sweep lies within their
     // fit error of them, which is what OCCT's section of the fitted face could not find at all where
     // the two faces are nearly tangent)
-    if (is_grazing && settings.touching_sections)
-      touching = std::make_shared<const TouchingSweep>(TouchingSweep{c, f, l, j, T, BRep_Tool::Surface(TopoDS::Face(fl.First()), l1)});
+    if (is_grazing && settings.touching_sections) {
+      std::vector<double> breaks;
+      if (j.type != JointType::Prismatic)
+        for (int k = 1; k < sweep_pieces(T); ++k) breaks.push_back(T * k / sweep_pieces(T));
+      touching = std::make_shared<const TouchingSweep>(
+          TouchingSweep{c, f, l, j, T, BRep_Tool::Surface(TopoDS::Face(fl.First()), l1), breaks});
+    }
     for (const auto& face : sw) cands.push_back({face, vid, Candidate::Kind::Swept, {}, -1, touching, {}, -1});
   }
   return cands;

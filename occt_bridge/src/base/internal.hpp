@@ -13,6 +13,8 @@
 #include <gp_Torus.hxx>
 #include <gp_Trsf.hxx>
 #include <gp_Vec.hxx>
+#include <algorithm>
+#include <cmath>
 #include <functional>
 #include <memory>
 #include <string>
@@ -95,6 +97,10 @@ GrazingEdge grazing_edge(const GrazingCurve& g, const TopoDS_Face& face, double 
 /// polynomial helices (lines, conics and splines; other curves are fitted), or always fitted to grids
 /// of exact points.
 enum class HelicalFaces { Spline, Fitted };
+
+/// The number of equal pieces of [0, T] that a curve turned or screwed through T is swept in (at most
+/// a quarter turn each: such a piece never overlaps itself); its faces meet at the times T k / n.
+inline int sweep_pieces(double T) { return std::max(1, int(std::ceil(T / (M_PI / 2) - 1e-9))); }
 
 /// Faces swept by curve `c` (on [first,last]) under `joint` for q in [0, T]: exact surfaces of
 /// revolution / extrusion, tensor-product or fitted B-spline surfaces for helical motions, one per

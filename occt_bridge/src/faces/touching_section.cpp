@@ -21,6 +21,7 @@
 #include <gp_Pln.hxx>
 #include <gp_Sphere.hxx>
 #include <gp_Torus.hxx>
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <memory>
@@ -183,6 +184,38 @@ std::vector<std::vector<UV>> runs_where(const ContourFunction& h, const std::vec
   return runs;
 }
 
+/// Run r (roots of h over (s, t)) cut where it crosses the times in `breaks`, each piece ending on
+/// the contour at that time.
+std::vector<std::vector<UV>> cut_at_times(const ContourFunction& h, const std::vector<UV>& r,
+                                          const std::vector<double>& breaks) {
+  std::vector<std::vector<UV>> pieces{{r.front()}};
+  for (std::size_t k = 0; k + 1 < r.size(); ++k) {
+    const UV d = r[k + 1] - r[k];
+    std::vector<double> along = breaks;  // in the order the segment meets them
+    std::sort(along.begin(), along.end());
+    if (d.y() < 0) std::reverse(along.begin(), along.end());
+    for (const double tb : along) {
+      if (!((r[k].y() - tb) * (r[k + 1].y() - tb) < 0)) continue;
+      auto on_contour = [&](double lambda) { return root_across(h, r[k] + lambda * d, d); };
+      const bool below = r[k].y() < tb;
+      double a = 0, b = 1;
+      for (int it = 0; it < 50; ++it) {
+        const double m = 0.5 * (a + b);
+        ((on_contour(m).y() < tb) == below ? a : b) = m;
+      }
+      const UV cut = on_contour(0.5 * (a + b));
+      pieces.back().push_back(cut);
+      pieces.push_back({cut});
+    }
+    pieces.back().push_back(r[k + 1]);
+    // (a point of the run on a break, as where the contour's grid has a line there)
+    bool on_break = false;
+    for (const double tb : breaks) on_break = on_break || std::abs(r[k + 1].y() - tb) <= 1e-12 * (1 + std::abs(tb));
+    if (on_break && k + 2 < r.size()) pieces.push_back({r[k + 1]});
+  }
+  return pieces;
+}
+
 /// Edges through a run of roots of h (points at(p)), each checked at the roots between its points;
 /// a run reaching less than `min_reach` from its first point makes none. With `depth` > 0, where a
 /// fit does not hold, the run is densified by those roots, and where that fit does not hold
@@ -261,8 +294,13 @@ std::optional<std::vector<TopoDS_Edge>> touching_section(const TouchingSweep& sw
     };
     // (a run within 1e-4 of the size is a point where the curve meets the joint's axis: its orbit
     // is that point, on the copy at every t)
-    for (const std::vector<UV>& r : runs_where(h, dense, good))
-      if (!fitted_edges(r, h, at_uv, tol, size, 1e-4 * size, 0, edges, fit_err)) return std::nullopt;
+    for (const std::vector<UV>& r : runs_where(h, dense, good)) {
+      double reach = 0;
+      for (const UV& p : r) reach = std::max(reach, at_uv(p).Distance(at_uv(r.front())));
+      if (reach < 1e-4 * size) continue;
+      for (const std::vector<UV>& piece : cut_at_times(h, r, sw.breaks))
+        if (!fitted_edges(piece, h, at_uv, tol, size, 0, 0, edges, fit_err)) return std::nullopt;
+    }
   }
   return edges;
 }

@@ -25,10 +25,12 @@ struct TouchingSweep {
   ScrewJoint joint;
   double T = 0;
   Handle(Geom_Surface) surface;  ///< the body face's surface, without its location
+  std::vector<double> breaks;    ///< the times between 0 and T where the sweep's faces meet
 };
 
 /// The curves where the sweep crosses `copy` (a face on the sweep's surface carried to the pose of
-/// t_touch, 0 or T) at t != t_touch, cut to the copy face and fitted to within `tol` (*fit_err: the
+/// t_touch, 0 or T) at t != t_touch, cut to the copy face and at the sweep's breaks (so that each
+/// lies on one of the sweep's faces) and fitted to within `tol` (*fit_err: the
 /// largest distance measured from the crossing). Nothing when a fit does not reach `tol`; the caller
 /// then intersects the faces otherwise.
 std::optional<std::vector<TopoDS_Edge>> touching_section(const TouchingSweep& sweep, double t_touch,

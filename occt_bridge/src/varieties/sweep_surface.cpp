@@ -114,7 +114,7 @@ std::vector<TopoDS_Face> planar_segment_sweep(const gp_Pnt& a, const gp_Pnt& b, 
   } else {
     parts.push_back({a, b});
   }
-  const int pieces = std::max(1, int(std::ceil(T / (M_PI / 2) - 1e-9)));
+  const int pieces = sweep_pieces(T);
   Handle(Geom_Plane) plane = new Geom_Plane(a, axis.Direction());
   for (auto [p, q] : parts) {
     for (int k = 0; k < pieces; ++k) {
@@ -236,7 +236,7 @@ std::vector<TopoDS_Face> torus_piece(const Handle(Geom_Circle)& c, double first,
     return new Geom_ToroidalSurface(gp_Ax3(foot, gp_Dir(w), gp_Dir(xd).Rotated(ax, turn)), major, minor);
   };
   if (torus(0)->Value(0, along ? vb : va).Distance(c->Value(last)) > 0.01 * tol + 1e-9 * (major + minor)) return {};
-  const int pieces = std::max(1, int(std::ceil(T / (M_PI / 2) - 1e-9)));
+  const int pieces = sweep_pieces(T);
   std::vector<TopoDS_Face> out;
   for (int k = 0; k < pieces; ++k) {
     // each piece on its own copy of the torus, turned to start at its u = 0 (see sphere_zone)
@@ -265,7 +265,7 @@ std::vector<TopoDS_Face> sphere_patch(const Handle(Geom_Circle)& c, double first
   const double la = latitude(a), lb = latitude(b);
   if (std::abs(lb - la) < 1e-9) return {};
   if (std::max(std::abs(la), std::abs(lb)) > M_PI / 2 - 1e-7) return {};  // an end on the axis
-  const int pieces = std::max(1, int(std::ceil(T / (M_PI / 2) - 1e-9)));
+  const int pieces = sweep_pieces(T);
   const TopoDS_Edge arc = edge_of(c, first, last);
   std::vector<TopoDS_Face> out;
   for (int k = 0; k < pieces; ++k) {
@@ -541,7 +541,7 @@ std::vector<TopoDS_Face> sweep_curve(const Handle(Geom_Curve)& c, double first, 
   }
   const bool screw = j.type == JointType::Helical && std::abs(j.pitch) > 0;
   // Pieces of at most a quarter turn never overlap themselves.
-  const int pieces = std::max(1, int(std::ceil(T / (M_PI / 2) - 1e-9)));
+  const int pieces = sweep_pieces(T);
   if (!screw) {
     // Two points of one curve at the same axial height and radius would sweep the same circle:
     // split the curve where its axial coordinate turns, so each piece sweeps one-to-one.
