@@ -160,7 +160,7 @@ TEST_CASE("Random one-joint sweeps in CI: every joint and entity kind, no wrong 
   for (const Outcomes& o : by_joint) CHECK(o.total() >= 15);
   for (const Outcomes& o : by_kind) CHECK(o.total() >= 7);
   CHECK(all.wrong_ok == 0);
-  // 64 of the 64 are right on an idle machine; the floor leaves room for a few slow ones (up to
+  // 65 of the 65 are right on an idle machine; the floor leaves room for a few slow ones (up to
   // 15 s) that meet their stop on a loaded one
   CHECK(all.right >= 48);
 }
