@@ -194,6 +194,19 @@ std::string step_mentioning(const std::vector<std::string>& steps, const std::st
   return {};
 }
 
+/// The case of the table's row, run in process, is right from its traced boundary: ok, not made
+/// again with OCCT's sections nor from the cells, within its requested tolerance and its reference.
+void check_right_from_traced_boundary(const TableRow& row) {
+  std::vector<std::string> steps;
+  const occt::RunResult r = run_row(row, &steps);
+  INFO(row.name << ": " << r.report.message);
+  REQUIRE(r.report.ok());
+  CHECK(step_mentioning(steps, "again") == "");
+  CHECK(step_mentioning(steps, "cells") == "");
+  CHECK(r.report.tol_achieved <= r.report.tol_requested);
+  CHECK(right_volume(r.report.volume_brep, row.volume, row.error));
+}
+
 }  // namespace
 
 TEST_CASE("Random cases: a solid with a sliver face is judged against its triangles, not point by point by OCCT") {
@@ -234,14 +247,7 @@ TEST_CASE("Random cases: a box screwed where a grazing line's sweep crosses the 
   // invalid, and the cells ran past 50 s into a failure. The crossing is traced on the exact sweep
   // now, within the sweep's fit error of its fitted face.
   const TableRow row = table_row("box_helical_30", "random_one_joint.tsv", 47);
-  std::vector<std::string> steps;
-  const occt::RunResult r = run_row(row, &steps);
-  INFO(r.report.message);
-  REQUIRE(r.report.ok());
-  CHECK(step_mentioning(steps, "again") == "");
-  CHECK(step_mentioning(steps, "cells") == "");
-  CHECK(r.report.tol_achieved <= r.report.tol_requested);
-  CHECK(right_volume(r.report.volume_brep, row.volume, row.error));
+  check_right_from_traced_boundary(row);
 }
 
 TEST_CASE("Random cases: a box screwed whose grazing line ends next to a corner closes its boundary from the traced crossings") {
@@ -253,14 +259,7 @@ TEST_CASE("Random cases: a box screwed whose grazing line ends next to a corner 
   // offset: both probes landed beyond it, the strip was kept and the boundary did not close, and
   // the cells lost half the solid (failed on its geometric error, 14 s).
   const TableRow row = table_row("box_helical_48");
-  std::vector<std::string> steps;
-  const occt::RunResult r = run_row(row, &steps);
-  INFO(r.report.message);
-  REQUIRE(r.report.ok());
-  CHECK(step_mentioning(steps, "again") == "");
-  CHECK(step_mentioning(steps, "cells") == "");
-  CHECK(r.report.tol_achieved <= r.report.tol_requested);
-  CHECK(right_volume(r.report.volume_brep, row.volume, row.error));
+  check_right_from_traced_boundary(row);
 }
 
 TEST_CASE("Random cases: a cone screwed whose grazing curve's profile folds back twice closes its boundary from the traced crossings") {
@@ -272,14 +271,7 @@ TEST_CASE("Random cases: a cone screwed whose grazing curve's profile folds back
   // two outer arms cross, the boundary kept a strip lying 0.0026 inside the solid and the cells ran
   // past the limit
   const TableRow row = table_row("cone_helical_15");
-  std::vector<std::string> steps;
-  const occt::RunResult r = run_row(row, &steps);
-  INFO(r.report.message);
-  REQUIRE(r.report.ok());
-  CHECK(step_mentioning(steps, "again") == "");
-  CHECK(step_mentioning(steps, "cells") == "");
-  CHECK(r.report.tol_achieved <= r.report.tol_requested);
-  CHECK(right_volume(r.report.volume_brep, row.volume, row.error));
+  check_right_from_traced_boundary(row);
 }
 
 TEST_CASE("Random cases: a cylinder screwed where two turns of a rim's sweep cross is right from the traced crossings") {
@@ -289,14 +281,7 @@ TEST_CASE("Random cases: a cylinder screwed where two turns of a rim's sweep cro
   // profile and were taken to meet along an edge at most: the strip next to that end, 9.4e-4
   // inside the solid, was kept, the boundary did not close and the cells ran past the limit
   const TableRow row = table_row("cylinder_helical_14", "random_one_joint.tsv", 47);
-  std::vector<std::string> steps;
-  const occt::RunResult r = run_row(row, &steps);
-  INFO(r.report.message);
-  REQUIRE(r.report.ok());
-  CHECK(step_mentioning(steps, "again") == "");
-  CHECK(step_mentioning(steps, "cells") == "");
-  CHECK(r.report.tol_achieved <= r.report.tol_requested);
-  CHECK(right_volume(r.report.volume_brep, row.volume, row.error));
+  check_right_from_traced_boundary(row);
 }
 
 TEST_CASE("Random cases: a torus extruded obliquely is right where a section crosses the fold of its extruded grazing curve") {
