@@ -29,6 +29,7 @@
 #include "util/random_one_joint.hpp"
 
 using namespace sweep;
+using sweep::occt::OrbitPatch;
 using sweep::occt::orbit_patch;
 using sweep::occt::orbit_section;
 
@@ -114,6 +115,29 @@ TopoDS_Face one_face_sweep(const TopoDS_Edge& e, const ScrewJoint& j, double T, 
   const std::vector<TopoDS_Face> faces = occt::sweep_curve(c, f, l, j, T, tol, err);
   REQUIRE(faces.size() == 1);
   return faces.front();
+}
+
+/// Two curves each swept over [0, T] by joint j (one face each, fitted to `tol`), and their orbit
+/// patches at the boundary tolerance the fit allows (ten fit errors, at least 100 eps).
+struct HelicalPair {
+  TopoDS_Face a, b;
+  double btol = 0;
+  OrbitPatch pa, pb;
+};
+
+HelicalPair helical_pair(const TopoDS_Edge& ea, const TopoDS_Edge& eb, const ScrewJoint& j, double T, double tol,
+                         double eps) {
+  double err = 0;
+  HelicalPair h;
+  h.a = one_face_sweep(ea, j, T, tol, &err);
+  h.b = one_face_sweep(eb, j, T, tol, &err);
+  h.btol = std::max(100 * eps, 10 * err);
+  const auto pa = orbit_patch(h.a, j, eps, h.btol), pb = orbit_patch(h.b, j, eps, h.btol);
+  REQUIRE(pa);
+  REQUIRE(pb);
+  h.pa = *pa;
+  h.pb = *pb;
+  return h;
 }
 
 }  // namespace
@@ -213,16 +237,10 @@ TEST_CASE("Orbit sections: helical sweeps of curves through one point cross alon
   const gp_Pnt P(1.5, 0.15, 0.05);
   const TopoDS_Edge line = BRepBuilderAPI_MakeEdge(gp_Pnt(1, 0, -0.45), gp_Pnt(2, 0.3, 0.55)).Edge();
   const TopoDS_Edge bent = spline_through({gp_Pnt(1.2, -0.4, 0.3), P, gp_Pnt(2.0, 0.5, -0.2)});
-  auto swept = [&](const TopoDS_Edge& e, double* err) { return one_face_sweep(e, j, T, tol, err); };
-  double err = 0;
-  const TopoDS_Face a = swept(line, &err), b = swept(bent, &err);
-  const double btol = std::max(100 * eps, 10 * err);
+  const auto [a, b, btol, pa, pb] = helical_pair(line, bent, j, T, tol, eps);
   CHECK_FALSE(orbit_patch(a, j, eps));  // (only with the fit's tolerance)
-  const auto pa = orbit_patch(a, j, eps, btol), pb = orbit_patch(b, j, eps, btol);
-  REQUIRE(pa);
-  REQUIRE(pb);
   double section_err = 0;
-  const auto arcs = orbit_section(*pa, *pb, j, btol, &section_err);
+  const auto arcs = orbit_section(pa, pb, j, btol, &section_err);
   REQUIRE(arcs);
   REQUIRE(arcs->size() == 1);
   CHECK(section_err <= 0.1 * btol);
@@ -247,9 +265,10 @@ TEST_CASE("Orbit sections: helical sweeps of curves through one point cross alon
   // the spline moved a quarter turn on (its face begins where the segment's ends): they meet at a
   // point at most
   const TopoDS_Edge later = TopoDS::Edge(bent.Moved(TopLoc_Location(occt::to_trsf(j.transform(T)))));
-  const auto pc = orbit_patch(swept(later, &err), j, eps, btol);
+  double err = 0;
+  const auto pc = orbit_patch(one_face_sweep(later, j, T, tol, &err), j, eps, btol);
   REQUIRE(pc);
-  const auto none = orbit_section(*pa, *pc, j, btol);
+  const auto none = orbit_section(pa, *pc, j, btol);
   REQUIRE(none);
   CHECK(none->empty());
   // another pitch: not a patch of this joint
@@ -286,14 +305,9 @@ TEST_CASE("Orbit sections: two turns of one screwed curve cross where its profil
   }
   const TopoDS_Edge curve = spline_through(pts);
   const TopoDS_Edge next = TopoDS::Edge(curve.Moved(TopLoc_Location(occt::to_trsf(j.transform(T)))));
-  double err = 0;
-  const TopoDS_Face a = one_face_sweep(curve, j, T, tol, &err), b = one_face_sweep(next, j, T, tol, &err);
-  const double btol = std::max(100 * eps, 10 * err);
-  const auto pa = orbit_patch(a, j, eps, btol), pb = orbit_patch(b, j, eps, btol);
-  REQUIRE(pa);
-  REQUIRE(pb);
+  const auto [a, b, btol, pa, pb] = helical_pair(curve, next, j, T, tol, eps);
   double section_err = 0;
-  const auto arcs = orbit_section(*pa, *pb, j, btol, &section_err);
+  const auto arcs = orbit_section(pa, pb, j, btol, &section_err);
   REQUIRE(arcs);
   REQUIRE(arcs->size() == 1);
   CHECK(section_err <= 0.1 * btol);
@@ -340,15 +354,9 @@ TEST_CASE("Orbit sections: helical sweeps of a grazing line and an edge from its
   REQUIRE(E.X() == Approx(0.32309).margin(1e-5));
   const TopoDS_Edge line = BRepBuilderAPI_MakeEdge(E, F).Edge();
   const TopoDS_Edge edge = BRepBuilderAPI_MakeEdge(E, gp_Pnt(x1, y, z0)).Edge();
-  auto swept = [&](const TopoDS_Edge& e, double* err) { return one_face_sweep(e, j, T, tol, err); };
-  double err = 0;
-  const TopoDS_Face a = swept(line, &err), b = swept(edge, &err);
-  const double btol = std::max(100 * eps, 10 * err);
-  const auto pa = orbit_patch(a, j, eps, btol), pb = orbit_patch(b, j, eps, btol);
-  REQUIRE(pa);
-  REQUIRE(pb);
+  const auto [a, b, btol, pa, pb] = helical_pair(line, edge, j, T, tol, eps);
   for (const bool swap : {false, true}) {
-    const auto arcs = swap ? orbit_section(*pb, *pa, j, btol) : orbit_section(*pa, *pb, j, btol);
+    const auto arcs = swap ? orbit_section(pb, pa, j, btol) : orbit_section(pa, pb, j, btol);
     REQUIRE(arcs);
     CHECK(arcs->empty());
   }

@@ -353,6 +353,26 @@ bool in_shared_end_contact(const Carried& a, const Carried& b, const OrbitFrame&
   return false;
 }
 
+/// The crossing through a meeting point of two faces' profiles (profile parameters ba of a and bb
+/// of b, at m across the orbits): an arc, segment or helix over each range along the orbits that
+/// both faces hold there, appended to `out`. False when one is not placed; the fit error grows
+/// with each helix fitted.
+bool meeting_point_arcs(const Carried& a, const Carried& b, const OrbitFrame& ax, const Eigen::Vector2d& m, double ba,
+                        double bb, double boundary_tol, double* fit_err, std::vector<TopoDS_Edge>& out) {
+  const auto [sa, la] = orbit_range(a, ax, ba);
+  const auto [sb, lb] = orbit_range(b, ax, bb);
+  for (const auto& [start, len] : overlapping_ranges(ax, sa, la, sb, lb, ax.min_length(m, boundary_tol))) {
+    double err = 0;
+    const std::optional<TopoDS_Edge> e =
+        ax.helix ? helix_section(a, b, ax, m, ba, bb, start, len, 0.1 * boundary_tol, boundary_tol, &err)
+                 : ax.arc(m, start, len);
+    if (fit_err) *fit_err = std::max(*fit_err, err);
+    if (!e) return false;
+    out.push_back(*e);
+  }
+  return true;
+}
+
 /// Where two faces swept from one curve (pieces of one sweep, their profiles the same, or the
 /// same reversed) cross: where the profile crosses itself, a line of the one may cross a line of
 /// the other (two turns of one screwed curve's sweep), over the range along the orbits both hold
@@ -365,18 +385,7 @@ std::optional<std::vector<TopoDS_Edge>> same_profile_crossings(const Carried& a,
       const double f = (xb - a.b0) / (a.b1 - a.b0);
       double ba = xa, bb = b.b0 + (b.b1 - b.b0) * (reversed ? 1 - f : f);
       if (closest_profile_points(a, b, ax, ba, bb) > boundary_tol) return std::nullopt;
-      const Eigen::Vector2d m = profile(a, ax, ba).m;
-      const auto [sa, la] = orbit_range(a, ax, ba);
-      const auto [sb, lb] = orbit_range(b, ax, bb);
-      for (const auto& [start, len] : overlapping_ranges(ax, sa, la, sb, lb, ax.min_length(m, boundary_tol))) {
-        double err = 0;
-        const std::optional<TopoDS_Edge> e =
-            ax.helix ? helix_section(a, b, ax, m, ba, bb, start, len, 0.1 * boundary_tol, boundary_tol, &err)
-                     : ax.arc(m, start, len);
-        if (fit_err) *fit_err = std::max(*fit_err, err);
-        if (!e) return std::nullopt;
-        out.push_back(*e);
-      }
+      if (!meeting_point_arcs(a, b, ax, profile(a, ax, ba).m, ba, bb, boundary_tol, fit_err, out)) return std::nullopt;
     }
   return out;
 }
@@ -581,19 +590,8 @@ std::optional<std::vector<TopoDS_Edge>> orbit_section(const OrbitPatch& patch_a,
   }
 
   std::vector<TopoDS_Edge> out;
-  for (const auto& root : interior) {
-    const auto [sa, la] = orbit_range(a, ax, root.ba);
-    const auto [sb, lb] = orbit_range(b, ax, root.bb);
-    for (const auto& [start, len] : overlapping_ranges(ax, sa, la, sb, lb, ax.min_length(root.m, boundary_tol))) {
-      double err = 0;
-      const std::optional<TopoDS_Edge> e =
-          ax.helix ? helix_section(a, b, ax, root.m, root.ba, root.bb, start, len, 0.1 * boundary_tol, boundary_tol, &err)
-                   : ax.arc(root.m, start, len);
-      if (fit_err) *fit_err = std::max(*fit_err, err);
-      if (!e) return std::nullopt;
-      out.push_back(*e);
-    }
-  }
+  for (const auto& root : interior)
+    if (!meeting_point_arcs(a, b, ax, root.m, root.ba, root.bb, boundary_tol, fit_err, out)) return std::nullopt;
   return out;
 }
 
