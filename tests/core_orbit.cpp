@@ -99,15 +99,19 @@ TEST_CASE("Orbit intervals: every primitive's intervals agree with its inside te
   }
 }
 
-TEST_CASE("Orbit volume: one-joint sweeps against closed forms") {
-  struct Case {
-    const char* name;
-    OrbitSolidPtr body;
-    ScrewJoint j;
-    double T, exact;
-  };
+namespace {
+
+/// A one-joint sweep whose volume has a closed form.
+struct ClosedFormCase {
+  const char* name;
+  OrbitSolidPtr body;
+  ScrewJoint j;
+  double T, exact;
+};
+
+std::vector<ClosedFormCase> closed_form_cases() {
   const double r = 0.5, d = 2.0;
-  const std::vector<Case> cases{
+  return {
       {"box a quarter turn about an outside axis", orbit_box(Vector3d(1, 0, 0), Vector3d(2, 1, 1)),
        joint(JointType::Revolute, Vector3d::Zero(), Vector3d::UnitZ()), M_PI / 2, M_PI + 1},
       {"ball extruded along a diagonal (capsule)", orbit_sphere(Vector3d::Zero(), 1),
@@ -132,13 +136,37 @@ TEST_CASE("Orbit volume: one-joint sweeps against closed forms") {
        joint(JointType::Prismatic, Vector3d::Zero(), Vector3d(1, 1, 0)), 2,
        6 + 2 * (3 * (1 + 2) / std::sqrt(2.0))},
   };
-  for (const auto& c : cases) {
+}
+
+}  // namespace
+
+TEST_CASE("Orbit volume: one-joint sweeps against closed forms") {
+  for (const auto& c : closed_form_cases()) {
     CAPTURE(c.name);
     double err = 0;
     const double v = joint_sweep_volume(*c.body, c.j, c.T, 1e-10, &err);
     CHECK(v == Approx(c.exact).epsilon(1e-8));
     CHECK(err < 1e-7 * c.exact);
   }
+}
+
+TEST_CASE("Orbit volume: shifted lattices agree with the closed forms within their own error estimate") {
+  for (const auto& c : closed_form_cases()) {
+    CAPTURE(c.name);
+    double err = 0;
+    const double v = joint_sweep_volume_lattice(*c.body, c.j, c.T, 100, 6, 7, &err);
+    CAPTURE(v, err, c.exact);
+    CHECK(std::abs(v - c.exact) <= 4 * err + 1e-12 * c.exact);
+    CHECK(err < 1e-2 * c.exact);  // an estimate that says something
+  }
+  // the same shifts for the same seed, other shifts for another
+  const ClosedFormCase c = closed_form_cases().at(2);
+  double e1 = 0, e2 = 0;
+  CHECK(joint_sweep_volume_lattice(*c.body, c.j, c.T, 40, 3, 11, &e1) ==
+        joint_sweep_volume_lattice(*c.body, c.j, c.T, 40, 3, 11, &e2));
+  CHECK(e1 == e2);
+  CHECK(joint_sweep_volume_lattice(*c.body, c.j, c.T, 40, 3, 11) !=
+        joint_sweep_volume_lattice(*c.body, c.j, c.T, 40, 3, 12));
 }
 
 TEST_CASE("Orbit volume: agrees with Monte Carlo membership on a torus moved along a direction in its plane") {

@@ -1,6 +1,7 @@
 // The volume of a one-joint sweep integrated over the space of orbits (see orbit.hpp).
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <functional>
 #include <map>
 
@@ -361,6 +362,36 @@ double joint_sweep_volume(const OrbitSolid& body_in, const ScrewJoint& j, double
   const double v = piecewise_integral(outer, space.b0(), space.b1(), n_outer, 0.5 * tol, &err, 6);
   if (error) *error = err;
   return v;
+}
+
+double joint_sweep_volume_lattice(const OrbitSolid& body_in, const ScrewJoint& j, double T, int n, int shifts,
+                                  std::uint64_t seed, double* error) {
+  const auto* body = dynamic_cast<const orbit_detail::LabeledSolid*>(&body_in);
+  SWEEP_ASSERT(body, "joint_sweep_volume_lattice needs an orbit solid of orbit.cpp");
+  SWEEP_ASSERT(n > 0 && shifts > 1, "a lattice needs points and at least two shifts");
+  const OrbitSpace space(*body, j, T);
+  const double da = (space.a1() - space.a0()) / n, db = (space.b1() - space.b0()) / n;
+  std::uint64_t state = seed;
+  auto uniform = [&state] {  // splitmix64: the same shifts on every compiler
+    std::uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return double((z ^ (z >> 31)) >> 11) * 0x1.0p-53;
+  };
+  double sum = 0, sum2 = 0;
+  for (int s = 0; s < shifts; ++s) {
+    const double oa = uniform(), ob = uniform();
+    double total = 0;
+    for (int a = 0; a < n; ++a)
+      for (int b = 0; b < n; ++b)
+        total += space.measure(space.a0() + (a + oa) * da, space.b0() + (b + ob) * db, nullptr);
+    const double v = total * da * db;
+    sum += v;
+    sum2 += v * v;
+  }
+  const double mean = sum / shifts;
+  if (error) *error = std::sqrt(std::max(0.0, sum2 / shifts - mean * mean) / (shifts - 1));
+  return mean;
 }
 
 }  // namespace sweep

@@ -137,14 +137,29 @@ inline RandomCase random_one_joint_case(std::uint64_t seed, int index) {
 
 namespace sweep::testing {
 
+/// A one-joint sweep as the orbit integrals take it: the body where the joint's range starts, the
+/// joint, and the range's length (a revolute's at most a turn).
+struct JointSweep {
+  OrbitSolidPtr body;
+  ScrewJoint j;
+  double T = 0;
+};
+
+/// The sweep of `body` (as orbit intervals, in the entity's frame) by the spec's one joint.
+inline JointSweep joint_sweep_of(const Spec& spec, const OrbitSolidPtr& body) {
+  const Motion& m = spec.motion.motion;
+  JointSweep s;
+  s.j = m.joints.at(0);
+  s.T = std::min(s.j.hi - s.j.lo, s.j.type == JointType::Revolute ? 2 * M_PI : 1e300);
+  s.body = orbit_placed(body, s.j.transform(s.j.lo) * m.home);
+  return s;
+}
+
 /// The volume of a one-joint sweep of a primitive, integrated over orbit space from the entity's
 /// orbit intervals (sweep/orbit.hpp): it never looks at a B-rep. *err: its error estimate.
 inline double reference_volume(const Spec& spec, double rel_tol, double* err) {
-  const Motion& m = spec.motion.motion;
-  ScrewJoint j = m.joints.at(0);
-  const double T = std::min(j.hi - j.lo, j.type == JointType::Revolute ? 2 * M_PI : 1e300);
-  const OrbitSolidPtr body = orbit_placed(make_orbit_solid(spec.entity), j.transform(j.lo) * m.home);
-  return joint_sweep_volume(*body, j, T, rel_tol, err);
+  const JointSweep s = joint_sweep_of(spec, make_orbit_solid(spec.entity));
+  return joint_sweep_volume(*s.body, s.j, s.T, rel_tol, err);
 }
 
 }  // namespace sweep::testing

@@ -154,17 +154,19 @@ inline bool write_part_step(const RandomPart& p, const std::string& path) {
   return ok;
 }
 
-/// The part's swept volume from its orbit intervals (never a B-rep); *err its error estimate.
-inline double part_reference_volume(const RandomPart& p, double rel_tol, double* err) {
+/// The part's sweep as orbit intervals (never a B-rep).
+inline JointSweep part_joint_sweep(const RandomPart& p) {
   // the joint as the parser reads it (a ball stands in for the part)
   const Spec spec = parse_spec("{\"sweep\": 1, \"angles\": \"deg\", \"entity\": {\"kind\": \"sphere\", \"center\": [0, 0, 0], "
                                "\"radius\": 1}, \"motion\": {\"kind\": \"axes\", \"joints\": [" + p.joint + "]}}",
                                ".");
-  const Motion& m = spec.motion.motion;
-  const ScrewJoint& j = m.joints.at(0);
-  const double T = std::min(j.hi - j.lo, j.type == JointType::Revolute ? 2 * M_PI : 1e300);
-  const OrbitSolidPtr body = orbit_placed(p.orbit, j.transform(j.lo) * m.home);
-  return joint_sweep_volume(*body, j, T, rel_tol, err);
+  return joint_sweep_of(spec, p.orbit);
+}
+
+/// The part's swept volume from its orbit intervals; *err its error estimate.
+inline double part_reference_volume(const RandomPart& p, double rel_tol, double* err) {
+  const JointSweep s = part_joint_sweep(p);
+  return joint_sweep_volume(*s.body, s.j, s.T, rel_tol, err);
 }
 
 }  // namespace sweep::testing
