@@ -34,14 +34,15 @@ namespace sweep::occt {
 
 namespace {
 
-/// Whether sampled points of face a's interior lie on face b (within 1e-7 of the model size).
+/// Whether sampled points of face a's interior lie on face b (within Settings::duplicate_face_distance
+/// of the model size).
 bool lies_on(const TopoDS_Face& a, const TopoDS_Face& b, double size) {
   double u0, u1, v0, v1;
   BRepTools::UVBounds(a, u0, u1, v0, v1);
   BRepAdaptor_Surface SA(a);
-  BRepTopAdaptor_FClass2d fa(a, 1e-9);
+  BRepTopAdaptor_FClass2d fa(a, Settings::face_sample_classifier_tolerance);
   Handle(Geom_Surface) gb = BRep_Tool::Surface(b);
-  BRepTopAdaptor_FClass2d fb(b, 1e-9);
+  BRepTopAdaptor_FClass2d fb(b, Settings::face_sample_classifier_tolerance);
   int n = 0;
   for (int i = 0; i < 5; ++i)
     for (int k = 0; k < 5; ++k) {
@@ -49,7 +50,7 @@ bool lies_on(const TopoDS_Face& a, const TopoDS_Face& b, double size) {
       if (fa.Perform(uv) != TopAbs_IN) continue;
       gp_Pnt p = SA.Value(uv.X(), uv.Y());
       GeomAPI_ProjectPointOnSurf proj(p, gb);
-      if (proj.NbPoints() == 0 || proj.LowerDistance() > 1e-7 * size) return false;
+      if (proj.NbPoints() == 0 || proj.LowerDistance() > Settings::duplicate_face_distance * size) return false;
       double pu, pv;
       proj.LowerDistanceParameters(pu, pv);
       if (fb.Perform(gp_Pnt2d(pu, pv)) == TopAbs_OUT) return false;
@@ -64,7 +65,7 @@ int visit_face_samples(const TopoDS_Face& f,
                        const std::function<bool(const Eigen::Vector3d&, const Eigen::Vector3d&)>& visit) {
   double u0, u1, v0, v1;
   BRepTools::UVBounds(f, u0, u1, v0, v1);
-  BRepTopAdaptor_FClass2d fc(f, 1e-9);
+  BRepTopAdaptor_FClass2d fc(f, Settings::face_sample_classifier_tolerance);
   BRepAdaptor_Surface S(f);
   const int n = 7;
   int visited = 0;
@@ -72,7 +73,7 @@ int visit_face_samples(const TopoDS_Face& f,
     for (int b = 0; b < n; ++b) {
       gp_Pnt2d uv(u0 + (u1 - u0) * (a + 0.5) / n, v0 + (v1 - v0) * (b + 0.5) / n);
       if (fc.Perform(uv) != TopAbs_IN) continue;
-      BRepLProp_SLProps props(S, uv.X(), uv.Y(), 1, 1e-9);
+      BRepLProp_SLProps props(S, uv.X(), uv.Y(), 1, Settings::normal_resolution);
       if (!props.IsNormalDefined()) continue;
       Eigen::Vector3d nn = to_eigen(gp_Vec(props.Normal()));
       if (f.Orientation() == TopAbs_REVERSED) nn = -nn;
@@ -93,11 +94,11 @@ bool internal_by_sign(const StageInput& in, LimitIds limits, int id, const TopoD
   const bool full_turn = in.full_turn();
   bool all_pos = true, all_neg = true;
   const int sampled = visit_face_samples(f, [&](const Eigen::Vector3d& p, const Eigen::Vector3d& nn) {
-    // how far the range moves the point along the normal, at least ten times the offset of the
-    // membership tests (a face the motion barely leaves is tested)
+    // how far the range moves the point along the normal, at least Settings::prune_sign_reach times
+    // the offset of the membership tests (a face the motion barely leaves is tested)
     const double c = nn.dot(in.j().velocity(p)) * in.T();
-    all_pos = all_pos && c > 10 * delta;
-    all_neg = all_neg && c < -10 * delta;
+    all_pos = all_pos && c > Settings::prune_sign_reach * delta;
+    all_neg = all_neg && c < -Settings::prune_sign_reach * delta;
     return true;
   });
   return sampled >= 4 && ((full_turn && (all_pos || all_neg)) || (!full_turn && id == limits.lo && all_pos) ||
@@ -118,12 +119,14 @@ void drop_duplicate_candidates(Candidates& cand, double size) {
     BRepBndLib::Add(f, b);
     bool dup = false;
     for (std::size_t k = 0; k < uniq.size() && !dup; ++k) {
-      if (std::abs(props[k].first - g.Mass()) > 1e-6 * std::max(g.Mass(), 1e-300)) continue;
+      if (std::abs(props[k].first - g.Mass()) > Settings::area_relative_tolerance * std::max(g.Mass(), 1e-300))
+        continue;
       double a[6], c[6];
       props[k].second.Get(a[0], a[1], a[2], a[3], a[4], a[5]);
       b.Get(c[0], c[1], c[2], c[3], c[4], c[5]);
       bool same_box = true;
-      for (int m = 0; m < 6; ++m) same_box = same_box && std::abs(a[m] - c[m]) <= 1e-6 * size;
+      for (int m = 0; m < 6; ++m)
+        same_box = same_box && std::abs(a[m] - c[m]) <= Settings::duplicate_box_tolerance * size;
       if (!same_box) continue;
       dup = lies_on(f, uniq[k], size) && lies_on(uniq[k], f, size);
     }
@@ -140,10 +143,12 @@ DroppedFaces prune_internal_candidates(const StageInput& in, LimitIds limits, do
   // A quick test with a comfortable offset; a sample that fails it (near the boundary, or at a
   // point where an internal face touches the boundary) is tested again with the trajectory test
   // at an offset just above the geometric error.
-  const double delta = 1e-4 * in.size, fine = std::max(1e-7 * in.size, 20 * fit_err);
+  const double delta = Settings::prune_offset * in.size;
+  const double fine = std::max(Settings::prune_fine_offset * in.size, Settings::prune_fine_fit_errors * fit_err);
   std::vector<char> internal_face(cand.faces.size(), 0);
   parallel_for(cand.faces.size(), [&]() -> std::function<void(std::size_t)> {
-    const auto quick = stage_membership(in), traj = stage_trajectory_membership(in, 1e-10);
+    const auto quick = stage_membership(in);
+    const auto traj = stage_trajectory_membership(in, Settings::prune_trajectory_tolerance);
     return [&, quick, traj](std::size_t fi) {
       const TopoDS_Face& f = cand.faces[fi];
       if (internal_by_sign(in, limits, cand.ids[fi], f, delta)) {
@@ -172,7 +177,7 @@ int restore_near_edges(const std::vector<TopoDS_Edge>& edges, double size, Dropp
     const double a = c.FirstParameter(), b = c.LastParameter();
     for (int k = 0; k < 5; ++k) pts.push_back(c.Value(a + (b - a) * (k + 0.5) / 5));
   }
-  const double d = 1e-5 * size;
+  const double d = Settings::restore_distance * size;
   std::vector<char> near(dropped.faces.size(), 0);
   parallel_for(dropped.faces.size(), [&]() -> std::function<void(std::size_t)> {
     return [&](std::size_t i) {
@@ -184,7 +189,7 @@ int restore_near_edges(const std::vector<TopoDS_Edge>& edges, double size, Dropp
       BRepTools::UVBounds(f, u0, u1, v0, v1);
       GeomAPI_ProjectPointOnSurf proj;
       proj.Init(BRep_Tool::Surface(f), u0, u1, v0, v1);
-      BRepTopAdaptor_FClass2d fc(f, 1e-9);
+      BRepTopAdaptor_FClass2d fc(f, Settings::face_sample_classifier_tolerance);
       for (const gp_Pnt& p : pts) {
         if (box.IsOut(p)) continue;
         proj.Perform(p);

@@ -54,10 +54,10 @@ struct Field {
     S.D1(p.x(), p.y(), P, Du, Dv);
     gp_Vec N = Du.Crossed(Dv);
     double n = N.Magnitude();
-    if (n < 1e-12 * (Du.Magnitude() + Dv.Magnitude() + 1e-300) || n < 1e-300) {
+    if (n < Settings::parametric_pole * (Du.Magnitude() + Dv.Magnitude() + 1e-300) || n < 1e-300) {
       // a pole of the parametrization: take the normal's limit from just inside the domain
-      const double eu = 1e-7 * (u1 - u0) * (p.x() < 0.5 * (u0 + u1) ? 1 : -1);
-      const double ev = 1e-7 * (v1 - v0) * (p.y() < 0.5 * (v0 + v1) ? 1 : -1);
+      const double eu = Settings::pole_normal_offset * (u1 - u0) * (p.x() < 0.5 * (u0 + u1) ? 1 : -1);
+      const double ev = Settings::pole_normal_offset * (v1 - v0) * (p.y() < 0.5 * (v0 + v1) ? 1 : -1);
       gp_Pnt Q;
       S.D1(p.x() + eu, p.y() + ev, Q, Du, Dv);
       N = Du.Crossed(Dv);
@@ -72,10 +72,12 @@ struct Field {
 /// The point of the grazing set near p: p projected onto the face's surface, then moved in the
 /// parameter plane along the gradient of g to g = 0.
 gp_Pnt grazing_point_near(const Field& F, ShapeAnalysis_Surface& projector, const gp_Pnt& p) {
-  const double hu = 1e-7 * (F.u1 - F.u0), hv = 1e-7 * (F.v1 - F.v0);
-  // (near a crossing of two branches the gradient vanishes: no step beyond a hundredth of the domain)
-  const double cap = 0.01 * std::max(F.u1 - F.u0, F.v1 - F.v0);
-  const gp_Pnt2d uv0 = projector.ValueOfUV(p, 1e-12);
+  const double hu = Settings::grazing_gradient_step * (F.u1 - F.u0);
+  const double hv = Settings::grazing_gradient_step * (F.v1 - F.v0);
+  // (near a crossing of two branches the gradient vanishes: no step beyond Settings::grazing_point_step
+  // of the domain)
+  const double cap = Settings::grazing_point_step * std::max(F.u1 - F.u0, F.v1 - F.v0);
+  const gp_Pnt2d uv0 = projector.ValueOfUV(p, Settings::surface_projection_precision);
   UV uv(uv0.X(), uv0.Y());
   for (int it = 0; it < 4; ++it) {
     const double g = F.g(uv);
@@ -145,7 +147,7 @@ Handle(Geom_BSplineCurve) fitted_curve(const Field& F, ShapeAnalysis_Surface& pr
     }
     Handle(TColgp_HArray1OfPnt) pts = new TColgp_HArray1OfPnt(1, int(q.size()));
     for (std::size_t k = 0; k < q.size(); ++k) pts->SetValue(int(k) + 1, q[k]);
-    GeomAPI_Interpolate interp(pts, false, 1e-12);
+    GeomAPI_Interpolate interp(pts, false, Settings::grazing_interpolation_tolerance);
     interp.Perform();
     if (interp.IsDone()) consider(interp.Curve());
   }
@@ -164,7 +166,7 @@ std::vector<gp_Pnt> boundary_roots_of(const TopoDS_Face& face, Field& F) {
     double f, l;
     Handle(Geom2d_Curve) pc = BRep_Tool::CurveOnSurface(e, face, f, l);
     if (pc.IsNull()) continue;
-    const int n = 400;
+    const int n = Settings::grazing_boundary_samples;
     double gprev = 0;
     for (int k = 0; k <= n; ++k) {
       gp_Pnt2d q = pc->Value(f + (l - f) * k / n);
@@ -221,8 +223,8 @@ std::optional<GrazingCurve> exact_line_or_circle(const std::vector<gp_Pnt>& q, d
         f = ElCLib::Parameter(circ, a);
       }
       double l = ElCLib::Parameter(circ, b);
-      while (l <= f + 1e-12) l += 2 * M_PI;
-      while (l > f + 2 * M_PI + 1e-12) l -= 2 * M_PI;
+      while (l <= f + Settings::angle_resolution) l += 2 * M_PI;
+      while (l > f + 2 * M_PI + Settings::angle_resolution) l -= 2 * M_PI;
       if (a.Distance(b) <= etol) l = f + 2 * M_PI;
       GrazingCurve gc;
       gc.curve = new Geom_Circle(circ);
@@ -242,13 +244,13 @@ std::vector<GrazingCurve> grazing_curves(const TopoDS_Face& face, const Velocity
   // Periodic directions: trace over a window shifted by an irrational fraction of the period,
   // so that no grazing line sits on the window's border.
   double ua = F.u0, ub = F.u1, va = F.v0, vb = F.v1;
-  if (F.S.IsUPeriodic() && std::abs((F.u1 - F.u0) - F.S.UPeriod()) < 1e-9) {
+  if (F.S.IsUPeriodic() && std::abs((F.u1 - F.u0) - F.S.UPeriod()) < Settings::whole_period_margin) {
     F.uper = true;
     F.uP = F.S.UPeriod();
     ua += 0.3819660112501051 * F.uP * 0.1;
     ub = ua + F.uP;
   }
-  if (F.S.IsVPeriodic() && std::abs((F.v1 - F.v0) - F.S.VPeriod()) < 1e-9) {
+  if (F.S.IsVPeriodic() && std::abs((F.v1 - F.v0) - F.S.VPeriod()) < Settings::whole_period_margin) {
     F.vper = true;
     F.vP = F.S.VPeriod();
     va += 0.3819660112501051 * F.vP * 0.1;
@@ -256,11 +258,12 @@ std::vector<GrazingCurve> grazing_curves(const TopoDS_Face& face, const Velocity
   }
   const double vscale = size + velocity.reach();
   const ContourFunction g = [&F](const UV& p) { return F.g(p); };
-  auto chains = contour_chains(g, ua, ub, va, vb, 61, 59, 1e-9 * vscale);  // none: the face slides within itself
-  if (chains.empty()) return {};
+  auto chains = contour_chains(g, ua, ub, va, vb, Settings::grazing_curve_grid_u, Settings::grazing_curve_grid_v,
+                               Settings::grazing_curve_flat * vscale);
+  if (chains.empty()) return {};  // none: the face slides within itself
 
   // Trimmed domain: keep the parts inside the face.
-  const double uvtol = 1e-9 * std::max(ub - ua, vb - va);
+  const double uvtol = Settings::parameter_resolution * std::max(ub - ua, vb - va);
   BRepTopAdaptor_FClass2d cls(face, uvtol);
   auto wrap = [&](UV p) {
     if (F.uper && p.x() > F.u1) p.x() -= F.uP;
@@ -281,7 +284,7 @@ std::vector<GrazingCurve> grazing_curves(const TopoDS_Face& face, const Velocity
     if (all_on) {
       // On a seam the face lies on both sides: the chain is interior after all.
       const UV m = chain[chain.size() / 2];
-      const double eu = 1e-6 * (ub - ua), ev = 1e-6 * (vb - va);
+      const double eu = Settings::seam_probe_offset * (ub - ua), ev = Settings::seam_probe_offset * (vb - va);
       auto inside = [&](UV q) {
         if (F.uper && q.x() < F.u0) q.x() += F.uP;
         if (F.vper && q.y() < F.v0) q.y() += F.vP;
@@ -296,7 +299,7 @@ std::vector<GrazingCurve> grazing_curves(const TopoDS_Face& face, const Velocity
     std::vector<UV> run;
     auto snap = [&](const UV& in, const UV& out_) {
       UV a = in, b = out_;
-      for (int it = 0; it < 60; ++it) {
+      for (int it = 0; it < Settings::grazing_boundary_bisections; ++it) {
         UV m = 0.5 * (a + b);
         (state(m) == TopAbs_OUT ? b : a) = m;
       }
@@ -330,8 +333,8 @@ std::vector<GrazingCurve> grazing_curves(const TopoDS_Face& face, const Velocity
       if (q.size() < 2) continue;
       double len = 0;
       for (std::size_t k = 1; k < q.size(); ++k) len += q[k].Distance(q[k - 1]);
-      if (len < 1e-7 * size) continue;
-      if (const auto exact = exact_line_or_circle(q, 1e-10 * size)) {
+      if (len < Settings::grazing_curve_min_length * size) continue;
+      if (const auto exact = exact_line_or_circle(q, Settings::canonical_curve_rounding * size)) {
         out.push_back(*exact);
         continue;
       }
@@ -351,16 +354,18 @@ std::vector<GrazingCurve> grazing_curves(const TopoDS_Face& face, const Velocity
 
 namespace {
 
-/// The largest distance from face f's surface of curve c on [first, last], at 64 points.
+/// The largest distance from face f's surface of curve c on [first, last], at
+/// Settings::grazing_edge_samples points.
 double distance_from_surface(const Handle(Geom_Curve)& c, double first, double last, const TopoDS_Face& f) {
   TopLoc_Location loc;
   const Handle(Geom_Surface) surf = BRep_Tool::Surface(f, loc);
   if (surf.IsNull()) return 0.0;
   ShapeAnalysis_Surface sas(surf);
   double worst = 0;
-  for (int k = 0; k <= 64; ++k) {
-    const gp_Pnt p = c->Value(first + (last - first) * k / 64).Transformed(loc.Transformation().Inverted());
-    const gp_Pnt2d uv = sas.ValueOfUV(p, 1e-12);
+  const int n = Settings::grazing_edge_samples;
+  for (int k = 0; k <= n; ++k) {
+    const gp_Pnt p = c->Value(first + (last - first) * k / n).Transformed(loc.Transformation().Inverted());
+    const gp_Pnt2d uv = sas.ValueOfUV(p, Settings::surface_projection_precision);
     worst = std::max(worst, p.Distance(surf->Value(uv.X(), uv.Y())));
   }
   return worst;
@@ -375,7 +380,7 @@ GrazingEdge grazing_edge(const GrazingCurve& g, const TopoDS_Face& face, double 
   out.curve = canonical_curve(g.curve, out.first, out.last, tol);
   out.edge = BRepBuilderAPI_MakeEdge(out.curve, out.first, out.last).Edge();
   const double off = distance_from_surface(out.curve, out.first, out.last, face);
-  if (off > BRep_Tool::Tolerance(out.edge)) BRep_Builder().UpdateEdge(out.edge, 1.5 * off);
+  if (off > BRep_Tool::Tolerance(out.edge)) BRep_Builder().UpdateEdge(out.edge, Settings::edge_tolerance_margin * off);
   return out;
 }
 

@@ -55,12 +55,13 @@ namespace {
 double helix_chord(double R, double b, double D) { return std::sqrt(2 * R * R * (1 - std::cos(D)) + b * b * D * D); }
 
 /// A lower bound of the chord |c(s) - c(s + D)| of a helix (radius R, rise b per radian) over D in
-/// [D0, D1]: its least value on samples spaced 1 % of r / speed apart, less what it can drop
-/// between two samples (its slope is at most the helix speed).
+/// [D0, D1]: its least value on samples spaced Settings::helix_chord_spacing of r / speed apart,
+/// less what it can drop between two samples (its slope is at most the helix speed).
 double chord_lower_bound(double R, double b, double r, double D0, double D1) {
   auto chord = [&](double D) { return helix_chord(R, b, D); };
   const double speed = std::sqrt(R * R + b * b);
-  const int n = std::max(64, int(std::ceil((D1 - D0) / (0.01 * r / speed))));
+  const int n =
+      std::max(Settings::helix_chord_samples, int(std::ceil((D1 - D0) / (Settings::helix_chord_spacing * r / speed))));
   const double h = (D1 - D0) / n;
   double lo = 1e300;
   for (int k = 0; k <= n; ++k) lo = std::min(lo, chord(D0 + h * k));
@@ -83,7 +84,9 @@ bool sphere_of(const TopoDS_Shape& body, Eigen::Vector3d* centre, double* radius
   // the whole sphere: its face spans the full parameter ranges
   double u0, u1, v0, v1;
   BRepTools::UVBounds(face, u0, u1, v0, v1);
-  if (u1 - u0 < 2 * M_PI - 1e-9 || v0 > -M_PI / 2 + 1e-9 || v1 < M_PI / 2 - 1e-9) return false;
+  if (u1 - u0 < 2 * M_PI - Settings::whole_period_margin || v0 > -M_PI / 2 + Settings::whole_period_margin ||
+      v1 < M_PI / 2 - Settings::whole_period_margin)
+    return false;
   *centre = to_eigen(sph->Location());
   *radius = sph->Radius();
   return true;
@@ -94,7 +97,7 @@ bool helix_reach_exceeds(const ScrewJoint& j, const Eigen::Vector3d& c, double T
   const Eigen::Vector3d w = j.direction;
   const Eigen::Vector3d d = (c - j.point) - w * w.dot(c - j.point);
   const double R = d.norm(), b = j.pitch;
-  if (R <= 1e-9 * (r + std::abs(b))) return false;  // the centre on the axis: a straight path
+  if (R <= Settings::on_axis_resolution * (r + std::abs(b))) return false;  // the centre on the axis: a straight path
   // local: the helix's radius of curvature (R^2 + b^2) / R
   if ((R * R + b * b) / R <= r + margin) return false;
   // global: chords |c(s) - c(s + D)|^2 = 2 R^2 (1 - cos D) + b^2 D^2 grow until the first zero D1 of
@@ -103,13 +106,14 @@ bool helix_reach_exceeds(const ScrewJoint& j, const Eigen::Vector3d& c, double T
   auto g = [&](double D) { return R * R * std::sin(D) + b * b * D; };
   double D1 = -1;
   {
-    const int n = 256;
+    const int n = Settings::helix_turn_samples;
     double prev = M_PI;
     for (int k = 1; k <= n; ++k) {  // g > 0 on (0, pi]; its first zero lies in (pi, 2 pi]
       const double D = M_PI + M_PI * k / n;
       if (g(D) <= 0) {
         double lo = prev, hi = D;
-        for (int it = 0; it < 60; ++it) ((g(0.5 * (lo + hi)) > 0) ? lo : hi) = 0.5 * (lo + hi);
+        for (int it = 0; it < Settings::helix_turn_bisections; ++it)
+          ((g(0.5 * (lo + hi)) > 0) ? lo : hi) = 0.5 * (lo + hi);
         D1 = lo;
         break;
       }
@@ -154,7 +158,8 @@ bool build_tube(const Eigen::Vector3d& c, double r, const ScrewJoint& j, double 
     return row;
   };
   Fit path;
-  for (int spans = std::max(1, int(std::ceil(T / M_PI))); spans <= 512; spans += std::max(1, spans / 4)) {
+  for (int spans = std::max(1, int(std::ceil(T / M_PI))); spans <= Settings::ball_tube_max_spans;
+       spans += std::max(1, spans / 4)) {
     path = fit_bspline(helices, 3 * nc, T, p, spans, 1);
     if (path.error <= 0.5 * fit_tol) break;
   }
@@ -265,7 +270,8 @@ double root_between(const std::function<double(double)>& f, double a, double b) 
   double fa = f(a), fb = f(b);
   if (fa >= 0) return a;
   if (fb <= 0) return b;
-  for (int it = 0; it < 100 && b - a > 1e-15 * (1 + std::abs(a)); ++it) {
+  for (int it = 0; it < Settings::helix_root_iterations && b - a > Settings::helix_root_precision * (1 + std::abs(a));
+       ++it) {
     const double x = b - fb * (b - a) / (fb - fa);
     const double fx = f(x);
     if (fx == 0) return x;
@@ -298,7 +304,7 @@ struct HelixPath {
   /// min over s in [lo, hi] of |x - c(s)|^2, the minimiser in *arg (sampled, then Newton
   /// safeguarded by bisection on the derivative).
   double min_dist2(const Eigen::Vector3d& x, double lo, double hi, double* arg) const {
-    const int n = 24;
+    const int n = Settings::helix_distance_samples;
     double best = 1e300;
     int kb = 0;
     for (int k = 0; k <= n; ++k) {
@@ -309,15 +315,15 @@ struct HelixPath {
     double a = lo + (hi - lo) * std::max(kb - 1, 0) / n, bb = lo + (hi - lo) * std::min(kb + 1, n) / n;
     double s = lo + (hi - lo) * kb / n;
     if (g(a) <= 0 && g(bb) >= 0) {
-      for (int it = 0; it < 60; ++it) {
+      for (int it = 0; it < Settings::helix_distance_iterations; ++it) {
         const Eigen::Vector3d y = pos(s), y1 = d1(s);
         const double gs = -2 * (x - y).dot(y1), hs = 2 * y1.squaredNorm() - 2 * (x - y).dot(d2(s));
         (gs < 0 ? a : bb) = s;
         double ns = s - gs / hs;
         if (!(hs > 0) || ns <= a || ns >= bb) ns = 0.5 * (a + bb);
-        const bool done = std::abs(ns - s) <= 1e-14 * (1 + std::abs(s));
+        const bool done = std::abs(ns - s) <= Settings::helix_distance_precision * (1 + std::abs(s));
         s = ns;
-        if (done || bb - a <= 1e-14 * (1 + std::abs(s))) break;
+        if (done || bb - a <= Settings::helix_distance_precision * (1 + std::abs(s))) break;
       }
       best = (x - pos(s)).squaredNorm();
     }
@@ -337,7 +343,8 @@ TopoDS_Edge edge_on(const Handle(Geom_Surface)& S, const Handle(Geom2d_Curve)& c
   BRepBuilderAPI_MakeEdge me(c, S, a, b);
   if (!me.IsDone()) return {};
   TopoDS_Edge e = me.Edge();
-  if (!BRepLib::BuildCurve3d(e, tol, GeomAbs_C1, 14, 200)) return {};
+  if (!BRepLib::BuildCurve3d(e, tol, GeomAbs_C1, Settings::tongue_edge_max_degree, Settings::tongue_edge_max_segments))
+    return {};
   return e;
 }
 
@@ -357,11 +364,11 @@ Handle(Geom2d_BSplineCurve) fit_pcurve(const std::function<Eigen::RowVectorXd(do
   // tol (with a margin), then more if needed
   Fit fit;
   int spans = 8;
-  for (int attempt = 0; attempt < 6 && spans <= 256; ++attempt) {
+  for (int attempt = 0; attempt < 6 && spans <= Settings::tongue_fit_max_spans; ++attempt) {
     fit = fit_bspline(f, 3, M_PI, p, spans, 1);
     if (fit.error <= tol) break;
     const double grow = std::pow(fit.error / tol, 1.0 / (p + 1));
-    spans = std::max(spans + 1, int(std::ceil(1.25 * spans * grow)));
+    spans = std::max(spans + 1, int(std::ceil(Settings::tongue_fit_span_margin * spans * grow)));
   }
   if (!(fit.error <= tol)) return {};
   *err = std::max(*err, fit.error);
@@ -434,8 +441,8 @@ class OverlapSweep {
 };
 
 std::optional<double> OverlapSweep::seam_phase() const {
-  const double R = H_.radius(), b = j_.pitch, margin = 1e-3 * r_;
-  if (R <= 1e-9 * (r_ + std::abs(b))) return std::nullopt;
+  const double R = H_.radius(), b = j_.pitch, margin = Settings::overlap_margin * r_;
+  if (R <= Settings::on_axis_resolution * (r_ + std::abs(b))) return std::nullopt;
   // the tube is smooth (radius of curvature above r), a whole turn and a half is swept, balls
   // half a turn apart or two turns and more apart are disjoint: only the neighbouring turns meet
   if ((R * R + b * b) / R <= r_ + margin || T_ < 3 * M_PI) return std::nullopt;
@@ -445,13 +452,14 @@ std::optional<double> OverlapSweep::seam_phase() const {
   // by the previous one (sigma in (-3 pi, -pi)): each must be one arc, the two disjoint.
   const Eigen::Vector3d t0 = j_.velocity(c_).normalized();
   const Eigen::Vector3d m0 = t0.unitOrthogonal(), m1 = t0.cross(m0);
-  const int N = 360;
+  const int N = Settings::overlap_circle_samples;
   std::vector<int> state(N);  // 1: covered from above, 2: from below
   for (int k = 0; k < N; ++k) {
     const double th = 2 * M_PI * k / N;
     const Eigen::Vector3d x = c_ + r_ * (std::cos(th) * m0 + std::sin(th) * m1);
     // and no ball within half a turn reaches it (the local tube is the boundary there)
-    if (H_.min_dist2(x, 0.05, M_PI, nullptr) <= r_ * r_ || H_.min_dist2(x, -M_PI, -0.05, nullptr) <= r_ * r_)
+    if (H_.min_dist2(x, Settings::overlap_local_gap, M_PI, nullptr) <= r_ * r_ ||
+        H_.min_dist2(x, -M_PI, -Settings::overlap_local_gap, nullptr) <= r_ * r_)
       return std::nullopt;
     const bool u = covered_up(x) < 0, d = covered_dn(x) < 0;
     if (u && d) return std::nullopt;
@@ -475,7 +483,7 @@ std::optional<double> OverlapSweep::seam_phase() const {
 
 bool OverlapSweep::arc(int which, double* v1, double* v2) const {
   auto f = [&](double v) { return which == 1 ? covered_up(start_row(v)) : covered_dn(start_row(v)); };
-  const int M = 720;
+  const int M = Settings::overlap_arc_samples;
   int first = -1, last = -1;
   for (int k = 1; k < M; ++k) {
     const bool in = f(2 * M_PI * k / M) < 0;
@@ -520,7 +528,7 @@ double OverlapSweep::on_ball(const Handle(Geom_BSplineSurface)& ball, const Eige
   *v = std::atan2(d.dot(tb_.b0), d.dot(tb_.n0));
   if (*v < 0) *v += 2 * M_PI;
   *u = std::atan2(z, (d - z * pole).norm());
-  for (int it = 0; it < 30; ++it) {
+  for (int it = 0; it < Settings::ball_projection_iterations; ++it) {
     gp_Pnt P;
     gp_Vec Su, Sv;
     ball->D1(*u, *v, P, Su, Sv);
@@ -530,7 +538,7 @@ double OverlapSweep::on_ball(const Handle(Geom_BSplineSurface)& ball, const Eige
     const Eigen::Vector2d step = A.ldlt().solve(Eigen::Vector2d(a.dot(e), bb.dot(e)));
     *u -= step(0);
     *v -= step(1);
-    if (step.norm() < 1e-13) break;
+    if (step.norm() < Settings::ball_projection_step) break;
   }
   return (to_eigen(ball->Value(*u, *v)) - y).norm();
 }
@@ -600,7 +608,9 @@ bool OverlapSweep::tongues(double phase) {
   });
   if (back_tongue_.IsNull() || front_tongue_.IsNull()) return false;
   const double proj_err = std::max(proj_err_of[0], proj_err_of[1]);
-  if (proj_err > 10 * tb_.error + 1e-12 * size_ || umax_back_ >= 0.45 * M_PI || umax_front_ >= 0.45 * M_PI)
+  const double umax = Settings::ball_tongue_latitude_max * M_PI;
+  if (proj_err > Settings::fit_error_margin * tb_.error + Settings::ball_projection_rounding * size_ ||
+      umax_back_ >= umax || umax_front_ >= umax)
     return false;
   e2d_ = *std::max_element(e2d_of, e2d_of + 4);
   err_ += e2d_ * speed_;
@@ -611,7 +621,8 @@ bool OverlapSweep::tongues(double phase) {
 // those the tongues cut away (points close to a tongue's curve are not compared). In four parts:
 // the tube's grid in two halves, each half ball.
 bool OverlapSweep::guard(std::size_t part) const {
-  const double band = 1e-4 * r_ * r_;
+  const double band = Settings::overlap_guard_band * r_ * r_;
+  const int nu = Settings::overlap_guard_grid_u, nv = Settings::overlap_guard_grid_v;
   auto cover = [&](const Eigen::Vector3d& x, double lo1, double hi1, double lo2, double hi2) {
     double d = 1e300;
     if (hi1 > lo1) d = std::min(d, H_.min_dist2(x, lo1, hi1, nullptr));
@@ -620,8 +631,8 @@ bool OverlapSweep::guard(std::size_t part) const {
   };
   auto check_tube = [&](int iu0, int iu1) {
     for (int iu = iu0; iu <= iu1; ++iu)
-      for (int iv = 0; iv < 48; ++iv) {
-        const double U = T_ * iu / 40, v = 2 * M_PI * (iv + 0.5) / 48;
+      for (int iv = 0; iv < nv; ++iv) {
+        const double U = T_ * iu / nu, v = 2 * M_PI * (iv + 0.5) / nv;
         const double k = cover(to_eigen(tb_.tube->Value(U, v)), std::max(0.0, U + M_PI), std::min(T_, U + 3 * M_PI),
                                std::max(0.0, U - 3 * M_PI), std::min(T_, U - M_PI));
         if (std::abs(k) < band) continue;
@@ -643,10 +654,11 @@ bool OverlapSweep::guard(std::size_t part) const {
   auto check_ball = [&](const Handle(Geom_BSplineSurface)& ball, const Handle(Geom2d_BSplineCurve)& tongue,
                         double lo, double hi) {
     std::vector<gp_Pnt2d> poly;
-    for (int i = 0; i <= 200; ++i) poly.push_back(tongue->Value(M_PI * i / 200));  // closed by the rim
-    for (int iu = 1; iu <= 16; ++iu)
-      for (int iv = 0; iv < 48; ++iv) {
-        const double u = 0.5 * M_PI * iu / 16, v = 2 * M_PI * (iv + 0.5) / 48;
+    const int np = Settings::overlap_guard_polygon, nr = Settings::overlap_guard_ball_rings;
+    for (int i = 0; i <= np; ++i) poly.push_back(tongue->Value(M_PI * i / np));  // closed by the rim
+    for (int iu = 1; iu <= nr; ++iu)
+      for (int iv = 0; iv < nv; ++iv) {
+        const double u = 0.5 * M_PI * iu / nr, v = 2 * M_PI * (iv + 0.5) / nv;
         const double k = cover(to_eigen(ball->Value(u, v)), lo, hi, 0, 0);
         if (std::abs(k) < band) continue;
         if ((k < 0) != inside(poly, u, v)) return false;
@@ -654,8 +666,8 @@ bool OverlapSweep::guard(std::size_t part) const {
     return true;
   };
   switch (part) {
-    case 0: return check_tube(0, 20);
-    case 1: return check_tube(21, 40);
+    case 0: return check_tube(0, nu / 2);
+    case 1: return check_tube(nu / 2 + 1, nu);
     case 2: return check_ball(tb_.back, back_tongue_, up_lo, up_hi);
     default: return check_ball(tb_.front, front_tongue_, T_ + dn_lo, T_ + dn_hi);
   }
@@ -770,7 +782,7 @@ TopoDS_Shape OverlapSweep::solid(std::vector<TopoDS_Face>* faces, std::vector<in
       } else if (tube_face(0, vm, fs, rl) && tube_face(vm, 2 * M_PI, fs, rl) &&
                  ball_faces(tb_.back, back_tongue_, a1_, a2_, umax_back_, 1, fs, rl) &&
                  ball_faces(tb_.front, front_tongue_, b1_, b2_, umax_front_, 2, fs, rl)) {
-        sewn = sew_solid(fs, std::max(Settings::sewing_gap * size_, 20 * err_), &out);
+        sewn = sew_solid(fs, std::max(Settings::sewing_gap * size_, Settings::overlap_sewing_fit_errors * err_), &out);
       }
     };
   });

@@ -82,7 +82,7 @@ std::vector<std::pair<int, std::vector<TopoDS_Face>>> revolve_pieces(const std::
           const double target = p.a0 + (p.a1 - p.a0) * (k + 0.5) / K;
           double lo = a, hi = b;
           const bool up = B > A;
-          for (int it = 0; it < 100; ++it) {
+          for (int it = 0; it < Settings::profile_height_bisections; ++it) {
             double m = 0.5 * (lo + hi);
             ((axial(m) < target) == up ? lo : hi) = m;
           }
@@ -96,7 +96,7 @@ std::vector<std::pair<int, std::vector<TopoDS_Face>>> revolve_pieces(const std::
       a = b;
     }
   }
-  const double eps = 1e-7 * size;
+  const double eps = Settings::same_profile_distance * size;
   std::vector<bool> done(pieces.size(), false);
   std::vector<std::pair<int, std::vector<TopoDS_Face>>> out;
   for (std::size_t i = 0; i < pieces.size(); ++i) {
@@ -117,7 +117,7 @@ std::vector<std::pair<int, std::vector<TopoDS_Face>>> revolve_pieces(const std::
       std::sort(starts.begin(), starts.end());
       for (std::size_t q = 0; q < starts.size() && covered; ++q) {
         const double next = q + 1 < starts.size() ? starts[q + 1] : starts[0] + 2 * M_PI;
-        covered = next - starts[q] <= T + 1e-9;
+        covered = next - starts[q] <= T + Settings::revolve_cover_slack;
       }
     }
     if (covered) {
@@ -153,7 +153,8 @@ TopoDS_Shape direct_ball_screw(const TopoDS_Shape& body, const ScrewJoint& j, do
   }
   if (j.pitch == 0) return {};
   *roles = {0, 1, 2};
-  const TopoDS_Shape direct = helix_reach_exceeds(j, centre, T, radius, std::max(1e-6 * radius, 100 * tol))
+  const double margin = std::max(Settings::ball_tube_margin * radius, Settings::ball_tube_margin_tol * tol);
+  const TopoDS_Shape direct = helix_reach_exceeds(j, centre, T, radius, margin)
                                   ? ball_screw_sweep(centre, radius, j, T, fit_tol, size, fit_err, faces)
                                   : ball_screw_sweep_overlap(centre, radius, j, T, fit_tol, size, fit_err, faces, roles);
   return valid_and_closed(direct) ? direct : TopoDS_Shape();
@@ -195,10 +196,10 @@ bool smooth_edge(const TopoDS_Edge& e, const TopTools_IndexedDataMapOfShapeListO
   BRepAdaptor_Surface S(f1);
   for (int m = 0; m <= 4; ++m) {
     const gp_Pnt2d uv = pc.Value(pc.FirstParameter() + (pc.LastParameter() - pc.FirstParameter()) * m / 4.0);
-    BRepLProp_SLProps props(S, uv.X(), uv.Y(), 1, 1e-9);
+    BRepLProp_SLProps props(S, uv.X(), uv.Y(), 1, Settings::normal_resolution);
     if (!props.IsNormalDefined()) return true;
     const Eigen::Vector3d v = j.velocity(to_eigen(props.Value()));
-    if (std::abs(to_eigen(gp_Vec(props.Normal())).dot(v)) > 1e-9 * (v.norm() + 1e-300)) return true;
+    if (std::abs(to_eigen(gp_Vec(props.Normal())).dot(v)) > Settings::tangent_motion * (v.norm() + 1e-300)) return true;
   }
   return false;
 }
@@ -216,7 +217,7 @@ void add_edge_sweeps(const StageInput& in, double& fit_err, Candidates& cand, st
     return false;
   };
   TopoDS_Shape regular = in.body;
-  BRepLib::EncodeRegularity(regular, 1e-9);
+  BRepLib::EncodeRegularity(regular, Settings::smooth_edge_angle);
   TopTools_IndexedDataMapOfShapeListOfShape edge_faces;
   TopExp::MapShapesAndAncestors(in.body, TopAbs_EDGE, TopAbs_FACE, edge_faces);
   int edge_no = 0;
@@ -230,9 +231,9 @@ void add_edge_sweeps(const StageInput& in, double& fit_err, Candidates& cand, st
       double spread = 0;
       gp_Pnt p0 = c->Value(f);
       for (int k = 1; k <= 8; ++k) spread = std::max(spread, p0.Distance(c->Value(f + (l - f) * k / 8.0)));
-      if (spread < 1e-9 * in.esize) continue;
+      if (spread < Settings::resolution * in.esize) continue;
     }
-    c = canonical_curve(c, f, l, std::max(in.fit_tol, 1e-10 * in.esize));
+    c = canonical_curve(c, f, l, std::max(in.fit_tol, Settings::canonical_curve_rounding * in.esize));
     gp_Pln plane;
     const bool planar = !c->IsKind(STANDARD_TYPE(Geom_Line)) && keeps_plane_of(c, f, l, j, in.size, &plane);
     const int vid = add_swept_variety(in, "boundary",
@@ -267,7 +268,7 @@ std::vector<TopoDS_Face> split_at_grazing_curves(const TopoDS_Face& face, const 
   }
   GProp_GProps g;
   BRepGProp::SurfaceProperties(face, g);
-  if (split_faces.empty() || std::abs(area - g.Mass()) > 1e-6 * g.Mass()) return {face};
+  if (split_faces.empty() || std::abs(area - g.Mass()) > Settings::area_relative_tolerance * g.Mass()) return {face};
   return split_faces;
 }
 

@@ -59,13 +59,16 @@ TopoDS_Face make_face(const Handle(Geom_Surface)& s, double u0, double u1, doubl
 /// True when the motion moves every point of the curve along the curve itself (its sweep is the
 /// curve, with no area).
 bool slides_along(const Handle(Geom_Curve)& c, double f, double l, const ScrewJoint& j) {
-  for (int k = 0; k <= 16; ++k) {
+  const int n = Settings::curve_slide_samples;
+  for (int k = 0; k <= n; ++k) {
     gp_Pnt p;
     gp_Vec d;
-    c->D1(f + (l - f) * k / 16.0, p, d);
+    c->D1(f + (l - f) * k / n, p, d);
     Eigen::Vector3d v = j.velocity(to_eigen(p)), t = to_eigen(d);
     if (t.norm() < 1e-300) continue;
-    if (v.cross(t).norm() > 1e-9 * (v.norm() + 1e-300) * t.norm() && v.norm() > 1e-12) return false;
+    if (v.cross(t).norm() > Settings::parallel_angle * (v.norm() + 1e-300) * t.norm() &&
+        v.norm() > Settings::still_speed)
+      return false;
   }
   return true;
 }
@@ -75,8 +78,9 @@ bool slides_along(const Handle(Geom_Curve)& c, double f, double l, const ScrewJo
 /// intersectors).
 bool on_axis(const Handle(Geom_Curve)& c, double f, double l, const ScrewJoint& j, double tol) {
   if (!j.is_rotation()) return false;
-  for (int k = 0; k <= 32; ++k) {
-    const Eigen::Vector3d r = to_eigen(c->Value(f + (l - f) * k / 32.0)) - j.point;
+  const int n = Settings::curve_on_axis_samples;
+  for (int k = 0; k <= n; ++k) {
+    const Eigen::Vector3d r = to_eigen(c->Value(f + (l - f) * k / n)) - j.point;
     if ((r - j.direction * j.direction.dot(r)).norm() > tol) return false;
   }
   return true;
@@ -84,8 +88,9 @@ bool on_axis(const Handle(Geom_Curve)& c, double f, double l, const ScrewJoint& 
 
 /// Best-fit check: all samples of c within tol of the candidate.
 bool matches(const Handle(Geom_Curve)& c, double f, double l, const Handle(Geom_Curve)& cand, double tol) {
-  for (int k = 0; k <= 64; ++k) {
-    gp_Pnt p = c->Value(f + (l - f) * k / 64.0);
+  const int n = Settings::canonical_curve_samples;
+  for (int k = 0; k <= n; ++k) {
+    gp_Pnt p = c->Value(f + (l - f) * k / n);
     if (cand->IsKind(STANDARD_TYPE(Geom_Line))) {
       if (Handle(Geom_Line)::DownCast(cand)->Lin().Distance(p) > tol) return false;
     } else {
@@ -152,7 +157,8 @@ TopoDS_Edge edge_of(const Handle(Geom_Curve)& c, double first, double last) {
 /// meets the rotation axis there), or false.
 bool sphere_centre_on_axis(const gp_Circ& circ, const gp_Ax1& axis, double tol, gp_Pnt* centre) {
   const gp_Dir w = axis.Direction(), n = circ.Axis().Direction();
-  if (gp_Vec(n).Crossed(gp_Vec(w)).Magnitude() < 1e-9) return false;  // perpendicular to the axis: planar
+  // perpendicular to the axis: planar
+  if (gp_Vec(n).Crossed(gp_Vec(w)).Magnitude() < Settings::parallel_angle) return false;
   // closest points of the circle's axis line C + s n and the rotation axis P + t w
   const gp_Pnt C = circ.Location(), P = axis.Location();
   const gp_Vec d(P, C);
@@ -162,7 +168,8 @@ bool sphere_centre_on_axis(const gp_Circ& circ, const gp_Ax1& axis, double tol, 
   const gp_Pnt O = P.Translated(gp_Vec(w) * gp_Vec(P, onC).Dot(gp_Vec(w)));
   // (a circle recognised from fitted points misses the axis by its fitting error)
   const double scale = 1 + circ.Radius() + d.Magnitude();
-  if (onC.Distance(O) > std::max(1e-12 * scale, 0.01 * tol)) return false;
+  if (onC.Distance(O) > std::max(Settings::circle_axis_rounding * scale, Settings::recognised_circle_slack * tol))
+    return false;
   *centre = O;
   return true;
 }
@@ -182,10 +189,10 @@ std::vector<TopoDS_Face> sphere_zone(const gp_Circ& circ, const gp_Pnt& a, const
     return std::asin(std::clamp(gp_Vec(O, x).Dot(gp_Vec(w)) / R, -1.0, 1.0));
   };
   const double va = std::min(latitude(a), latitude(b)), vb = std::max(latitude(a), latitude(b));
-  if (vb - va < 1e-9) return {};
+  if (vb - va < Settings::sphere_latitude_span_min) return {};
   // a zone through a pole is left to the general revolve (merging faces around the poles of a
   // spherical surface loops in ShapeUpgrade_UnifySameDomain)
-  if (va < -M_PI / 2 + 1e-7 || vb > M_PI / 2 - 1e-7) return {};
+  if (va < -M_PI / 2 + Settings::sphere_pole_margin || vb > M_PI / 2 - Settings::sphere_pole_margin) return {};
   gp_Dir xd = w.IsParallel(gp::DX(), 1e-3) ? gp_Dir(gp_Vec(w).Crossed(gp::DY())) : gp_Dir(gp_Vec(w).Crossed(gp::DX()));
   std::vector<TopoDS_Face> out;
   for (int k = 0; k < 4; ++k) {
@@ -210,7 +217,9 @@ std::vector<TopoDS_Face> torus_piece(const Handle(Geom_Circle)& c, double first,
   const gp_Vec w = to_vec(j.direction).Normalized(), n(circ.Axis().Direction());
   const gp_Pnt P = to_pnt(j.point), C = circ.Location();
   // (a circle recognised from fitted points is off the plane by its fitting error)
-  if (std::abs(n.Dot(w)) * circ.Radius() > 0.01 * tol || std::abs(gp_Vec(P, C).Dot(n)) > 0.01 * tol) return {};
+  if (std::abs(n.Dot(w)) * circ.Radius() > Settings::recognised_circle_slack * tol ||
+      std::abs(gp_Vec(P, C).Dot(n)) > Settings::recognised_circle_slack * tol)
+    return {};
   const gp_Pnt foot = P.Translated(w * gp_Vec(P, C).Dot(w));
   const gp_Vec x(foot, C);
   const double major = x.Magnitude(), minor = circ.Radius();
@@ -235,7 +244,9 @@ std::vector<TopoDS_Face> torus_piece(const Handle(Geom_Circle)& c, double first,
   auto torus = [&](double turn) {
     return new Geom_ToroidalSurface(gp_Ax3(foot, gp_Dir(w), gp_Dir(xd).Rotated(ax, turn)), major, minor);
   };
-  if (torus(0)->Value(0, along ? vb : va).Distance(c->Value(last)) > 0.01 * tol + 1e-9 * (major + minor)) return {};
+  if (torus(0)->Value(0, along ? vb : va).Distance(c->Value(last)) >
+      Settings::recognised_circle_slack * tol + Settings::torus_end_rounding * (major + minor))
+    return {};
   const int pieces = sweep_pieces(T);
   std::vector<TopoDS_Face> out;
   for (int k = 0; k < pieces; ++k) {
@@ -263,8 +274,8 @@ std::vector<TopoDS_Face> sphere_patch(const Handle(Geom_Circle)& c, double first
   const double R = O.Distance(a);
   auto latitude = [&](const gp_Pnt& x) { return std::asin(std::clamp(gp_Vec(O, x).Dot(gp_Vec(w)) / R, -1.0, 1.0)); };
   const double la = latitude(a), lb = latitude(b);
-  if (std::abs(lb - la) < 1e-9) return {};
-  if (std::max(std::abs(la), std::abs(lb)) > M_PI / 2 - 1e-7) return {};  // an end on the axis
+  if (std::abs(lb - la) < Settings::sphere_latitude_span_min) return {};
+  if (std::max(std::abs(la), std::abs(lb)) > M_PI / 2 - Settings::sphere_pole_margin) return {};  // an end on the axis
   const int pieces = sweep_pieces(T);
   const TopoDS_Edge arc = edge_of(c, first, last);
   std::vector<TopoDS_Face> out;
@@ -277,7 +288,7 @@ std::vector<TopoDS_Face> sphere_patch(const Handle(Geom_Circle)& c, double first
     rm.SetRotation(axis, 0.5 * (t0 + t1) + M_PI);
     gp_Vec radial(O, m.Transformed(rm));
     radial -= gp_Vec(w) * radial.Dot(gp_Vec(w));
-    if (radial.Magnitude() < 1e-9 * R) return {};
+    if (radial.Magnitude() < Settings::on_axis_resolution * R) return {};
     Handle(Geom_SphericalSurface) sphere = new Geom_SphericalSurface(gp_Ax3(O, w, gp_Dir(radial)), R);
     const TopoDS_Edge e0 = TopoDS::Edge(BRepBuilderAPI_Transform(arc, r0, true).Shape());
     const TopoDS_Edge e1 = TopoDS::Edge(BRepBuilderAPI_Transform(arc, r1, true).Shape());
@@ -302,13 +313,13 @@ std::vector<TopoDS_Face> sphere_patch(const Handle(Geom_Circle)& c, double first
       fix.Perform();
       f = fix.Face();
       g = GProp_GProps();
-      BRepGProp::SurfaceProperties(f, g, 1e-9);
+      BRepGProp::SurfaceProperties(f, g, Settings::sphere_patch_area_precision);
       if (g.Mass() > 0) break;
     }
     tighten_pcurves(f, std::max(tol, 1e-9));
     if (!BRepCheck_Analyzer(f).IsValid()) return {};
     const double area = R * R * (t1 - t0) * std::abs(std::sin(lb) - std::sin(la));
-    if (std::abs(g.Mass() - area) > 1e-6 * area) return {};
+    if (std::abs(g.Mass() - area) > Settings::area_relative_tolerance * area) return {};
     out.push_back(f);
   }
   return out;
@@ -321,7 +332,7 @@ namespace {
 /// and at its ends (against the vertices).
 double pcurve_gap(const TopoDS_Edge& e, const TopoDS_Face& face, const Handle(Geom_Surface)& surface) {
   double dev = 0;
-  ShapeAnalysis_Edge().CheckSameParameter(e, face, dev, 23);
+  ShapeAnalysis_Edge().CheckSameParameter(e, face, dev, Settings::pcurve_gap_samples);
   double f, l;
   const Handle(Geom2d_Curve) pc = BRep_Tool::CurveOnSurface(e, face, f, l);
   if (pc.IsNull()) return dev;
@@ -358,7 +369,7 @@ void tighten_pcurves(const TopoDS_Face& face, double tol) {
     bb.Range(e, face, f, l);
     const double dev2 = pcurve_gap(e, face, surface);
     if (dev2 < dev) {
-      bb.UpdateEdge(e, std::max(1.5 * dev2, 1e-7));
+      bb.UpdateEdge(e, std::max(Settings::edge_tolerance_margin * dev2, 1e-7));
     } else {  // the projection is no better: the old pcurve stays
       bb.UpdateEdge(e, old, face, edge_tol);
       bb.Range(e, face, pf, pl);
@@ -392,7 +403,7 @@ Handle(Geom_Curve) canonical_curve(const Handle(Geom_Curve)& c0, double& first, 
     double mid = ElCLib::Parameter(circ->Circ(), m);
     double l = ElCLib::Parameter(circ->Circ(), b);
     if (mid < f) mid += 2 * M_PI;
-    if (l <= f + 1e-12) l += 2 * M_PI;
+    if (l <= f + Settings::angle_resolution) l += 2 * M_PI;
     if (mid > l) {  // travel is clockwise: reverse the circle's axis
       gp_Circ cc = circ->Circ();
       gp_Ax2 ax = cc.Position();
@@ -400,7 +411,7 @@ Handle(Geom_Curve) canonical_curve(const Handle(Geom_Curve)& c0, double& first, 
       circ = new Geom_Circle(gp_Circ(ax, cc.Radius()));
       f = ElCLib::Parameter(circ->Circ(), a);
       l = ElCLib::Parameter(circ->Circ(), b);
-      if (l <= f + 1e-12) l += 2 * M_PI;
+      if (l <= f + Settings::angle_resolution) l += 2 * M_PI;
     }
     if (a.Distance(b) <= tol) l = f + 2 * M_PI;
     first = f;
@@ -418,7 +429,7 @@ std::vector<double> axial_breaks(const Handle(Geom_Curve)& c, double first, doub
     c->D1(u, p, d);
     return d.Dot(w);
   };
-  const int n = 64;
+  const int n = Settings::profile_cut_samples;
   std::vector<double> cuts;
   double amin = 1e300, amax = -1e300;
   for (int k = 0; k <= n; ++k) {
@@ -426,7 +437,7 @@ std::vector<double> axial_breaks(const Handle(Geom_Curve)& c, double first, doub
     amin = std::min(amin, a);
     amax = std::max(amax, a);
   }
-  if (amax - amin <= 1e-9 * (1 + std::abs(amax))) return cuts;
+  if (amax - amin <= Settings::profile_axial_flat * (1 + std::abs(amax))) return cuts;
   std::vector<double> u(n + 1), d(n + 1);
   double dmax = 0;
   for (int k = 0; k <= n; ++k) {
@@ -434,7 +445,7 @@ std::vector<double> axial_breaks(const Handle(Geom_Curve)& c, double first, doub
     d[k] = da(u[k]);
     dmax = std::max(dmax, std::abs(d[k]));
   }
-  const double zero = 1e-12 * dmax;
+  const double zero = Settings::profile_slope_zero * dmax;
   for (int k = 1; k <= n; ++k) {
     if (k < n && std::abs(d[k]) <= zero) {
       cuts.push_back(u[k]);
@@ -442,13 +453,15 @@ std::vector<double> axial_breaks(const Handle(Geom_Curve)& c, double first, doub
     }
     if (std::abs(d[k - 1]) <= zero || std::abs(d[k]) <= zero || (d[k - 1] > 0) == (d[k] > 0)) continue;
     double lo = u[k - 1], hi = u[k], flo = d[k - 1];
-    for (int it = 0; it < 80; ++it) {
+    for (int it = 0; it < Settings::profile_cut_bisections; ++it) {
       double m = 0.5 * (lo + hi), fm = da(m);
       if ((fm > 0) == (flo > 0)) { lo = m; flo = fm; } else hi = m;
     }
     const double cut = 0.5 * (lo + hi);
     // an axial turn at an end (within rounding of the sampled derivative) makes no piece
-    if (cut - first > 1e-7 * (last - first) && last - cut > 1e-7 * (last - first)) cuts.push_back(cut);
+    if (cut - first > Settings::profile_cut_end * (last - first) &&
+        last - cut > Settings::profile_cut_end * (last - first))
+      cuts.push_back(cut);
   }
   return cuts;
 }
@@ -468,20 +481,22 @@ std::vector<double> axis_crossings(const Handle(Geom_Curve)& c, double first, do
     c->D1(u, p, d);
     return radial(gp_Vec(p0, p)).Dot(radial(d));
   };
-  const int n = 64;
+  const int n = Settings::profile_cut_samples;
   std::vector<double> cuts;
   std::vector<double> u(n + 1), g(n + 1);
   for (int k = 0; k <= n; ++k) u[k] = first + (last - first) * k / n, g[k] = slope(u[k]);
   for (int k = 1; k <= n; ++k) {
     if (!(g[k - 1] < 0 && g[k] >= 0)) continue;
     double lo = u[k - 1], hi = u[k];
-    for (int it = 0; it < 80; ++it) {
+    for (int it = 0; it < Settings::profile_cut_bisections; ++it) {
       const double m = 0.5 * (lo + hi);
       (slope(m) < 0 ? lo : hi) = m;
     }
     const double at = 0.5 * (lo + hi);
     if (dist(at) > tol) continue;
-    if (at - first > 1e-7 * (last - first) && last - at > 1e-7 * (last - first)) cuts.push_back(at);
+    if (at - first > Settings::profile_cut_end * (last - first) &&
+        last - at > Settings::profile_cut_end * (last - first))
+      cuts.push_back(at);
   }
   return cuts;
 }
@@ -526,7 +541,8 @@ std::vector<TopoDS_Face> sweep_curve(const Handle(Geom_Curve)& c, double first, 
   if (c->IsKind(STANDARD_TYPE(Geom_Line)) && j.type == JointType::Revolute) {
     gp_Pnt a = c->Value(first), b = c->Value(last);
     gp_Vec d(a, b);
-    if (std::abs(d.Normalized().Dot(to_vec(j.direction))) < 1e-12) return planar_segment_sweep(a, b, j, T, tol);
+    if (std::abs(d.Normalized().Dot(to_vec(j.direction))) < Settings::planar_segment_cosine)
+      return planar_segment_sweep(a, b, j, T, tol);
   }
   auto faces_of = [&](const TopoDS_Shape& sh) {
     for (TopExp_Explorer ex(sh, TopAbs_FACE); ex.More(); ex.Next()) out.push_back(TopoDS::Face(ex.Current()));
@@ -560,7 +576,7 @@ std::vector<TopoDS_Face> sweep_curve(const Handle(Geom_Curve)& c, double first, 
     const gp_Ax1 axis(to_pnt(j.point), gp_Dir(to_vec(j.direction)));
     if (const Handle(Geom_Circle) circle = Handle(Geom_Circle)::DownCast(c); !circle.IsNull()) {
       // exact spheres and tori where the circle lies on one about the axis
-      const bool whole = T >= 2 * M_PI - 1e-12;
+      const bool whole = T >= 2 * M_PI - Settings::angle_resolution;
       auto exact = whole ? sphere_zone(circle->Circ(), c->Value(first), c->Value(last), axis, tol)
                          : std::vector<TopoDS_Face>{};
       if (exact.empty()) exact = torus_piece(circle, first, last, j, T, tol);

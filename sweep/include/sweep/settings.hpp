@@ -32,7 +32,9 @@ struct Settings {
   static constexpr double sewing_gap = 1e-7;
   /// How many measured fit errors apart two fitted curves or surfaces may lie and still meet: the
   /// sewing gap, the arrangement's fuzzy value and how far a section may lie from a face's boundary
-  /// grow to this many fit errors, and the closest classification offset stays above it.
+  /// grow to this many fit errors, the closest classification offset stays above it, and points of
+  /// a ball's screw-swept tube may lie this many of its fit errors from the half balls they are
+  /// projected on.
   static constexpr double fit_error_margin = 10;
   /// Two directions within this angle (radians) are parallel: axes of surfaces on one line, planes
   /// of one orientation, cones of one semi-angle.
@@ -47,6 +49,24 @@ struct Settings {
   /// Neighbouring triangles of a mesh whose normals differ by less than this angle (radians) make one
   /// planar face.
   static constexpr double mesh_coplanar_angle = 1e-9;
+  /// Two angles closer than this (radians) are one: an arc of a circle whose end meets its start
+  /// runs a whole turn, and a rotation this close to a whole turn is one.
+  static constexpr double angle_resolution = 1e-12;
+  /// A face whose parameter range falls short of its surface's period, or of a sphere's poles, by
+  /// less than this spans it whole.
+  static constexpr double whole_period_margin = 1e-9;
+  /// A point nearer a rotation axis than this (x the local scale: a sphere's radius, a ball's
+  /// radius plus the screw's pitch) lies on it.
+  static constexpr double on_axis_resolution = 1e-9;
+  /// Two areas that differ by less than this fraction are one: the pieces of a split face cover
+  /// it, a spherical patch has its exact area, two candidate faces may be the same face.
+  static constexpr double area_relative_tolerance = 1e-6;
+  /// The resolution (absolute) below which a surface's derivatives vanish when its normal is
+  /// computed at a sampled point.
+  static constexpr double normal_resolution = 1e-9;
+  /// An edge's tolerance is raised to this many times its measured distance from the face it
+  /// lies on (its curve on the face, or the face's surface).
+  static constexpr double edge_tolerance_margin = 1.5;
 
   // --- building a stage's solid from its sweep boundary
   /// How far off a piece of the candidate boundary its two sides are tested (x size), and again at
@@ -126,6 +146,86 @@ struct Settings {
   /// How many times a patch that no single fitted B-spline holds is halved (patch_faces).
   static constexpr int patch_face_splits = 4;
 
+  // --- faces swept by a curve under one screw joint (sweep_curve)
+  /// Points a curve is sampled at to tell whether the motion slides it along itself, whether it
+  /// lies on a rotation axis, and whether it is a line or a circle (canonical_curve).
+  static constexpr int curve_slide_samples = 16;
+  static constexpr int curve_on_axis_samples = 32;
+  static constexpr int canonical_curve_samples = 64;
+  /// A point of a curve slower than this under the joint (absolute) stays put: it does not tell
+  /// whether the curve slides along itself.
+  static constexpr double still_speed = 1e-12;
+  /// A curve within this (x size) of a line or a circle is that line or circle: points of a
+  /// grazing curve (roots of n . v to rounding), and the least tolerance an edge of the entity is
+  /// recognised with.
+  static constexpr double canonical_curve_rounding = 1e-10;
+  /// A segment whose direction makes a cosine below this with a revolute joint's axis lies across
+  /// the axis: it sweeps a planar region.
+  static constexpr double planar_segment_cosine = 1e-12;
+  /// Curves are cut where their axial coordinate turns and where they meet a rotation axis: the
+  /// points sampled to bracket those places, the bisections that locate them, and how near an end
+  /// (x the curve's parameter range) a cut makes no piece.
+  static constexpr int profile_cut_samples = 64;
+  static constexpr int profile_cut_bisections = 80;
+  static constexpr double profile_cut_end = 1e-7;
+  /// A curve whose axial coordinate spans less than this (x one plus its largest value) keeps to a
+  /// plane across the axis (it has no axial turns); its axial slope vanishes where it is below the
+  /// second (x its largest sampled value).
+  static constexpr double profile_axial_flat = 1e-9;
+  static constexpr double profile_slope_zero = 1e-12;
+  /// A circle recognised from fitted points lies on a sphere or a torus about the rotation axis
+  /// when it misses it by at most this (x tol: its fitting error), or by rounding: x the circle's
+  /// scale (the distance of its axis from the rotation axis), x the torus's size (its ends).
+  static constexpr double recognised_circle_slack = 0.01;
+  static constexpr double circle_axis_rounding = 1e-12;
+  static constexpr double torus_end_rounding = 1e-9;
+  /// Spheres swept exactly by arcs: an arc whose ends' latitudes differ by less than the first
+  /// (radians) sweeps nothing; a latitude within the second of a pole is on it (the zone or patch
+  /// is left to the general revolution).
+  static constexpr double sphere_latitude_span_min = 1e-9;
+  static constexpr double sphere_pole_margin = 1e-7;
+  /// The relative precision of a spherical patch's integrated area (checked against its exact
+  /// area).
+  static constexpr double sphere_patch_area_precision = 1e-9;
+  /// Points at which an edge's curve on a face is compared with its 3-D curve (tighten_pcurves).
+  static constexpr int pcurve_gap_samples = 23;
+
+  // --- grazing curves of a face of the body at one instant (grazing_curves)
+  /// The contour grid over the face's parameters (cells along u and along v) and the tracer's
+  /// flat value (x size plus the velocity's reach).
+  static constexpr int grazing_curve_grid_u = 61;
+  static constexpr int grazing_curve_grid_v = 59;
+  static constexpr double grazing_curve_flat = 1e-9;
+  /// A point of the face is a pole of its parametrisation where |Su x Sv| is below this
+  /// x (|Su| + |Sv|); the normal there is read this far inside the domain (x its parameter range).
+  static constexpr double parametric_pole = 1e-12;
+  static constexpr double pole_normal_offset = 1e-7;
+  /// A point is moved onto a grazing curve along the gradient of n . v: the gradient's
+  /// finite-difference step (x the parameter range), and the longest step (x the larger side of the
+  /// parameter domain; near a crossing of two branches the gradient vanishes).
+  static constexpr double grazing_gradient_step = 1e-7;
+  static constexpr double grazing_point_step = 0.01;
+  /// The precision (absolute) of the projections of points onto a face's surface.
+  static constexpr double surface_projection_precision = 1e-12;
+  /// Points of a grazing curve closer than this (absolute) are one to the interpolator that fits
+  /// a cubic through them.
+  static constexpr double grazing_interpolation_tolerance = 1e-12;
+  /// Points each boundary edge of the face is sampled at for the roots of n . v (the exact ends of
+  /// the grazing curves that leave the face).
+  static constexpr int grazing_boundary_samples = 400;
+  /// Bisections that put the end of a grazing curve on the face's trimmed boundary.
+  static constexpr int grazing_boundary_bisections = 60;
+  /// The tolerance of the classifier of points against the face's trimmed domain (x the larger
+  /// side of its parameter box).
+  static constexpr double parameter_resolution = 1e-9;
+  /// How far (x the parameter range) a grazing curve along the face's boundary is probed on both
+  /// sides: where the face lies on both, the boundary is a seam and the curve is interior.
+  static constexpr double seam_probe_offset = 1e-6;
+  /// A run of a grazing curve inside the face shorter than this (x size) makes no curve.
+  static constexpr double grazing_curve_min_length = 1e-7;
+  /// Points at which a grazing edge's distance from the face's surface is measured.
+  static constexpr int grazing_edge_samples = 64;
+
   // --- faces swept by a curve under a helical joint, fitted to grids of exact points
   /// The grid's intervals per side: the first tried, doubled up to the last while the fit's
   /// measured error exceeds its tolerance.
@@ -138,6 +238,102 @@ struct Settings {
   /// The share of a face's tolerance that the polynomial helices of a tensor-product helical face
   /// may stray from the exact sweep (sweep_curve).
   static constexpr double helical_spline_share = 0.01;
+
+  // --- a ball swept by a screw, built directly as a tube and two half balls (helical_tube.cpp)
+  /// The sweep is one tube and two half balls when the reach of the centre's helix exceeds the
+  /// radius by this (x the radius) or this many tolerances, whichever is larger (else neighbouring
+  /// turns may meet).
+  static constexpr double ball_tube_margin = 1e-6;
+  static constexpr int ball_tube_margin_tol = 100;
+  /// The lower bound of the helix's chords over a range of angles is taken on at least this many
+  /// samples, spaced at most this (x the radius / the helix's speed) apart.
+  static constexpr int helix_chord_samples = 64;
+  static constexpr double helix_chord_spacing = 0.01;
+  /// The first zero of the chords' growth (past half a turn) is bracketed on this many samples of
+  /// the next half turn, then bisected this many times.
+  static constexpr int helix_turn_samples = 256;
+  static constexpr int helix_turn_bisections = 60;
+  /// The most spans of the B-spline fitted to the helices of the grazing circle's poles.
+  static constexpr int ball_tube_max_spans = 512;
+  /// A point's distance from the helix: samples along the range, then safeguarded Newton steps,
+  /// at most this many, until a step is below this (x one plus the angle).
+  static constexpr int helix_distance_samples = 24;
+  static constexpr int helix_distance_iterations = 60;
+  static constexpr double helix_distance_precision = 1e-14;
+  /// Roots bracketed along the tube (the times a ball's surface passes a point, the ends of the
+  /// covered arcs): regula falsi steps, at most this many, until the bracket is below this (x one
+  /// plus its lower end).
+  static constexpr int helix_root_iterations = 100;
+  static constexpr double helix_root_precision = 1e-15;
+  /// More than a turn and a half, neighbouring turns meeting: how far (x the radius) the helix's
+  /// radius of curvature and its chords must stay above their limits (r and 2 r), the samples of
+  /// the start circle that find the arcs the neighbouring turns cover (then located on this many
+  /// samples of the tube's start row), and the angle of the screw on either side of the start
+  /// within which balls are left out of that test (they touch the start circle).
+  static constexpr double overlap_margin = 1e-3;
+  static constexpr int overlap_circle_samples = 360;
+  static constexpr int overlap_arc_samples = 720;
+  static constexpr double overlap_local_gap = 0.05;
+  /// The curves of the tongues in a face's parameters: the most spans of their fits, the margin on
+  /// the number of spans that the error's fall predicts to reach the tolerance, and the largest
+  /// degree and most segments of the 3-D curves built from them.
+  static constexpr int tongue_fit_max_spans = 256;
+  static constexpr double tongue_fit_span_margin = 1.25;
+  static constexpr int tongue_edge_max_degree = 14;
+  static constexpr int tongue_edge_max_segments = 200;
+  /// Points of the tube's tongue are projected onto a half ball by Gauss-Newton steps, at most
+  /// this many, until a step is below this (absolute, in the ball's parameters); the projections
+  /// may miss the ball by fit_error_margin of the tube's fit errors plus this rounding (x size),
+  /// and the ball's tongue stays below this latitude (x pi).
+  static constexpr int ball_projection_iterations = 30;
+  static constexpr double ball_projection_step = 1e-13;
+  static constexpr double ball_projection_rounding = 1e-12;
+  static constexpr double ball_tongue_latitude_max = 0.45;
+  /// The guard that samples the covered set: points whose squared distance from the nearest ball
+  /// centre is within this (x the radius squared) of the radius squared are not compared; its grid
+  /// on the tube (along the motion, around the circle), the rings of its grid on each half ball,
+  /// and the points of the polygon that stands for a ball's tongue.
+  static constexpr double overlap_guard_band = 1e-4;
+  static constexpr int overlap_guard_grid_u = 40;
+  static constexpr int overlap_guard_grid_v = 48;
+  static constexpr int overlap_guard_ball_rings = 16;
+  static constexpr int overlap_guard_polygon = 200;
+  /// The faces of an overlapping sweep are sewn across this many fit errors (when that is more
+  /// than the sewing gap).
+  static constexpr int overlap_sewing_fit_errors = 20;
+
+  // --- a stage's candidate faces (stage_candidates.cpp, candidate_pruning.cpp)
+  /// Curve pieces revolved by less than a turn lie on one surface of revolution when their axial
+  /// ranges and radii agree within this (x size); the radii are sampled at heights found by this
+  /// many bisections; their angular ranges cover the whole turn when the gaps between their starts
+  /// exceed the range by no more than this (radians).
+  static constexpr double same_profile_distance = 1e-7;
+  static constexpr int profile_height_bisections = 100;
+  static constexpr double revolve_cover_slack = 1e-9;
+  /// Faces whose normals along a shared edge differ by less than this angle (radians) meet
+  /// smoothly there; the motion is tangent to a face where |n . v| is at most this x |v|.
+  static constexpr double smooth_edge_angle = 1e-9;
+  static constexpr double tangent_motion = 1e-9;
+  /// The tolerance (absolute, in a face's parameters) of the classifiers that tell which of a
+  /// face's sampled points lie inside it.
+  static constexpr double face_sample_classifier_tolerance = 1e-9;
+  /// Two candidate faces are one when their areas agree, their boxes agree within the first
+  /// (x size), and sampled points of each lie within the second (x size) of the other.
+  static constexpr double duplicate_box_tolerance = 1e-6;
+  static constexpr double duplicate_face_distance = 1e-7;
+  /// A candidate is internal when its sampled points are inside the swept set just off both its
+  /// sides: at this offset (x size) by the stage's membership test, or else by the trajectory test
+  /// (its tolerance x size) at the larger of the second offset (x size) and this many fit errors.
+  static constexpr double prune_offset = 1e-4;
+  static constexpr double prune_fine_offset = 1e-7;
+  static constexpr int prune_fine_fit_errors = 20;
+  static constexpr double prune_trajectory_tolerance = 1e-10;
+  /// A face of the body at an end of the range is internal by the sign of n . v alone where the
+  /// range moves each of its sampled points along the normal by more than this many offsets.
+  static constexpr int prune_sign_reach = 10;
+  /// A dropped candidate is restored when a free edge of the arrangement passes within this
+  /// (x size) of it.
+  static constexpr double restore_distance = 1e-5;
 
   // --- building a stage from the arrangement of its candidate faces
   /// A stage whose arrangement of the candidates left after pruning fails its checks is built
