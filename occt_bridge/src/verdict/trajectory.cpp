@@ -274,32 +274,62 @@ struct TrajectoryMembership::Impl {
     return false;
   }
 
+  /// The parameter ranges of path c over each of which its tangent turns by at most
+  /// Settings::trajectory_piece_turn. OCCT's curve-face intersector samples the range it is given:
+  /// over a whole helix of turns it stepped over a short chord through a cylinder face, which it
+  /// found over a part of the path.
+  static std::vector<std::pair<double, double>> path_pieces(const Geom_Curve& c) {
+    const double a = c.FirstParameter(), b = c.LastParameter();
+    std::vector<std::pair<double, double>> pieces;
+    double from = a, turned = 0;
+    gp_Pnt p;
+    gp_Vec before;
+    c.D1(a, p, before);
+    const int n = Settings::trajectory_turn_samples;
+    for (int k = 1; k <= n; ++k) {
+      const double u = a + (b - a) * k / n;
+      gp_Vec d;
+      c.D1(u, p, d);
+      if (before.Magnitude() > 0 && d.Magnitude() > 0) turned += before.Angle(d);
+      before = d;
+      if (turned > Settings::trajectory_piece_turn && k < n) {
+        pieces.push_back({from, u});
+        from = u;
+        turned = 0;
+      }
+    }
+    pieces.push_back({from, b});
+    return pieces;
+  }
+
   bool meets_boundary(const Eigen::Vector3d& x) {
     const auto t0 = Clock::now();
     Handle(Geom_Curve) c = paths_(x);
     if (c.IsNull()) return intersect_.record(t0, false);
-    Handle(GeomAdaptor_Curve) curve = new GeomAdaptor_Curve(c);
-    Bnd_Box box;
-    BndLib_Add3dCurve::Add(*curve, 0.0, box);
     Handle(Geom_Circle) circle;
     if (auto tc = Handle(Geom_TrimmedCurve)::DownCast(c)) circle = Handle(Geom_Circle)::DownCast(tc->BasisCurve());
     const double T = c->LastParameter();
-    for (std::size_t k = 0; k < inter_.size(); ++k) {
-      if (inter_[k].box.IsOut(box)) continue;
-      if (circle && inter_[k].torus) {
-        bool solved = false;
-        const bool hit = circle_meets_face(circle->Circ(), T, *inter_[k].torus, *inter_[k].fc, &solved);
-        if (solved) {
-          if (!hit) continue;
-          if (k > 0) std::rotate(inter_.begin(), inter_.begin() + k, inter_.begin() + k + 1);
-          return intersect_.record(t0, true);
+    for (const auto& [from, to] : path_pieces(*c)) {
+      Handle(GeomAdaptor_Curve) curve = new GeomAdaptor_Curve(c, from, to);
+      Bnd_Box box;
+      BndLib_Add3dCurve::Add(*curve, 0.0, box);
+      for (std::size_t k = 0; k < inter_.size(); ++k) {
+        if (inter_[k].box.IsOut(box)) continue;
+        if (circle && inter_[k].torus) {
+          bool solved = false;
+          const bool hit = circle_meets_face(circle->Circ(), T, *inter_[k].torus, *inter_[k].fc, &solved);
+          if (solved) {
+            if (!hit) continue;
+            if (k > 0) std::rotate(inter_.begin(), inter_.begin() + k, inter_.begin() + k + 1);
+            return intersect_.record(t0, true);
+          }
         }
+        inter_[k].inter->Perform(curve, from, to);
+        if (!inter_[k].inter->IsDone() || inter_[k].inter->NbPnt() == 0) continue;
+        // the face met goes first next time: neighbouring points tend to meet the same face
+        if (k > 0) std::rotate(inter_.begin(), inter_.begin() + k, inter_.begin() + k + 1);
+        return intersect_.record(t0, true);
       }
-      inter_[k].inter->Perform(curve, c->FirstParameter(), c->LastParameter());
-      if (!inter_[k].inter->IsDone() || inter_[k].inter->NbPnt() == 0) continue;
-      // the face met goes first next time: neighbouring points tend to meet the same face
-      if (k > 0) std::rotate(inter_.begin(), inter_.begin() + k, inter_.begin() + k + 1);
-      return intersect_.record(t0, true);
     }
     return intersect_.record(t0, false);
   }

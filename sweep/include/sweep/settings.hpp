@@ -353,6 +353,12 @@ struct Settings {
   /// within three deflections plus the tolerance of the triangulated boundary are left out (the
   /// probes test that band).
   double verdict_deflection = 2e-3;
+  /// The membership by trajectories meets each point's path with the body's faces over pieces of
+  /// the path along which its tangent turns by at most this angle (radians; OCCT's curve-face
+  /// intersector samples the range it is given and steps over short chords through a face on a
+  /// longer one), its turning summed at this many points of the path.
+  static constexpr double trajectory_piece_turn = 0.7853981633974483;
+  static constexpr int trajectory_turn_samples = 256;
   /// Sub-boxes a joint-space search may split for one verdict point (chains); a point it cannot
   /// decide is left out and counted as undecided.
   std::size_t membership_budget = 20000;
