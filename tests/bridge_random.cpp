@@ -337,13 +337,15 @@ Outcomes run_parts(const std::function<bool(const TableRow&)>& take) {
 
 }  // namespace
 
-TEST_CASE("Random parts in CI: machined parts from STEP under revolute and prismatic joints with no wrong solid ok", "[random]") {
-  // each family once per joint kind (the table's first ten rows)
-  const Outcomes o = run_parts([](const TableRow& r) { return r.index < 10; });
-  CHECK(o.total() == 10);
+TEST_CASE("Random parts in CI: machined parts from STEP under revolute prismatic and helical joints with no wrong solid ok", "[random]") {
+  // each family once per joint kind (the table's first fifteen rows)
+  const Outcomes o = run_parts([](const TableRow& r) { return r.index < 15; });
+  CHECK(o.total() == 15);
   CHECK(o.wrong_ok == 0);
-  // 9 of the 10 are right on an idle machine (the L-bracket's cells miss the tolerance by 6 %)
-  CHECK(o.right >= 7);
+  // on an idle machine 9 of the 10 under revolute and prismatic joints are right (the L-bracket's
+  // cells miss the tolerance by 6 %), and 2 of the 5 helical ones (the boss and the pocket take
+  // about 27 s, the collar's boundary does not close)
+  CHECK(o.right >= 9);
 }
 
 TEST_CASE("Random parts: no wrong solid ok on every part of the table", "[random][bench]") {
