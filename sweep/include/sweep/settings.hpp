@@ -358,7 +358,7 @@ struct Settings {
   /// intersector samples the range it is given and steps over short chords through a face on a
   /// longer one), its turning summed at this many points of the path.
   static constexpr double trajectory_piece_turn = 0.7853981633974483;
-  static constexpr int trajectory_turn_samples = 256;
+  static constexpr int trajectory_turn_samples = 32;
   /// Sub-boxes a joint-space search may split for one verdict point (chains); a point it cannot
   /// decide is left out and counted as undecided.
   std::size_t membership_budget = 20000;
