@@ -69,7 +69,7 @@ double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::
 /// up to `count` of them, with outward normals.
 std::vector<SurfacePoint> edge_samples(const TopoDS_Face& f, int count) {
   std::vector<SurfacePoint> out;
-  BRepTopAdaptor_FClass2d fc(f, 1e-12);
+  BRepTopAdaptor_FClass2d fc(f, Settings::edge_sample_classifier_tolerance);
   BRepAdaptor_Surface S(f);
   for (TopExp_Explorer ex(f, TopAbs_EDGE); ex.More() && int(out.size()) < count; ex.Next()) {
     double a, b;
@@ -84,7 +84,7 @@ std::vector<SurfacePoint> edge_samples(const TopoDS_Face& f, int count) {
       if (d.Magnitude() == 0) continue;
       const gp_Vec2d across = gp_Vec2d(-d.Y(), d.X()).Normalized();
       bool found = false;
-      for (double h = 0.25; h > 1e-4 && !found; h /= 3)
+      for (double h = Settings::edge_sample_first_step; h > Settings::edge_sample_min_step && !found; h /= 3)
         for (int side : {1, -1}) {
           const gp_Pnt2d q = uv.Translated(across * (side * h * chord));
           if (fc.Perform(q) != TopAbs_IN || !add_surface_point(S, f, q, out)) continue;
@@ -125,8 +125,8 @@ TopoDS_Shape split_at_grazing(const TopoDS_Shape& body, const ScrewJoint& j, dou
       const Handle(Geom2d_Curve) pc = BRep_Tool::CurveOnSurface(e, f, a, b);
       if (pc.IsNull()) continue;
       const gp_Pnt2d p = pc->Value(a), q = pc->Value(b);
-      if (std::abs(p.X() - q.X()) < 1e-9 * (u1 - u0 + 1)) useam = true;
-      else if (std::abs(p.Y() - q.Y()) < 1e-9 * (v1 - v0 + 1)) vseam = true;
+      if (std::abs(p.X() - q.X()) < Settings::seam_end_resolution * (u1 - u0 + 1)) useam = true;
+      else if (std::abs(p.Y() - q.Y()) < Settings::seam_end_resolution * (v1 - v0 + 1)) vseam = true;
     }
     for (double frac : {1.0 / 3, 2.0 / 3}) {
       if (useam) {
@@ -229,7 +229,7 @@ bool on_surface_of(const TopoDS_Edge& e, const TopoDS_Face& f, double tol) {
   ShapeAnalysis_Surface S(BRep_Tool::Surface(f));
   for (int k = 0; k < 5; ++k) {
     const gp_Pnt p = c->Value(first + (last - first) * (k + 0.5) / 5);
-    S.ValueOfUV(p, 0.01 * tol);
+    S.ValueOfUV(p, Settings::on_surface_projection * tol);
     if (S.Gap() > tol) return false;
   }
   return true;
@@ -353,7 +353,7 @@ TopoDS_Shape merged_analytic_faces(const TopoDS_Shape& solid) {
       for (std::size_t k = i + 1; k < faces.size(); ++k) {
         const Elementary &a = faces[i], &b = faces[k];
         if (a.type != b.type || a.type == GeomAbs_Plane || same_turn(a.frame, b.frame)) continue;
-        if (!same_domain(a.type, a.frame, a.size, b.frame, b.size, 10 * tol)) continue;
+        if (!same_domain(a.type, a.frame, a.size, b.frame, b.size, Settings::same_domain_tolerances * tol)) continue;
         for (const TopoDS_Face& f : {a.face, b.face})
           for (TopExp_Explorer ex(f, TopAbs_EDGE); ex.More(); ex.Next()) unify.KeepShape(ex.Current());
       }
@@ -400,7 +400,7 @@ std::vector<Candidate> candidates_of(const TopoDS_Shape& body, BoundaryContext& 
   const double T = ctx.T, size = ctx.size, fit_tol = ctx.fit_tol;
   const Settings& settings = ctx.settings;
   BoundarySweep& out = ctx.out;
-  const bool full_turn = j.type == JointType::Revolute && T >= 2 * M_PI - 1e-12;
+  const bool full_turn = j.type == JointType::Revolute && T >= 2 * M_PI - Settings::angle_resolution;
   const int joint_no = ctx.joint_no;
   const std::string qn = "q" + std::to_string(joint_no);
   const nlohmann::json qfree = {{qn, {0.0, T}}};
@@ -479,7 +479,7 @@ std::vector<Candidate> candidates_of(const TopoDS_Shape& body, BoundaryContext& 
     double f, l;
     Handle(Geom_Curve) c = BRep_Tool::Curve(e, f, l);
     if (c.IsNull()) continue;
-    c = canonical_curve(c, f, l, std::max(fit_tol, 1e-10 * size));
+    c = canonical_curve(c, f, l, std::max(fit_tol, Settings::canonical_curve_rounding * size));
     gp_Pln plane;
     const bool planar = !c->IsKind(STANDARD_TYPE(Geom_Line)) && keeps_plane_of(c, f, l, j, size, &plane);
     double err = 0;
@@ -529,7 +529,7 @@ void group_by_surface(std::vector<Candidate>& cands, BoundaryContext& c) {
     std::iota(parent.begin(), parent.end(), 0);
     std::function<int(int)> root = [&](int x) { return parent[x] == x ? x : parent[x] = root(parent[x]); };
     std::vector<Bnd_Box> boxes(n);
-    for (std::size_t i = 0; i < n; ++i) boxes[i] = box_of(cands[i].face, 10 * eps);
+    for (std::size_t i = 0; i < n; ++i) boxes[i] = box_of(cands[i].face, Settings::candidate_box_gap * eps);
     for (std::size_t a = 0; a < n; ++a)
       for (std::size_t b = a + 1; b < n; ++b)
         if (!boxes[a].IsOut(boxes[b]) && same_surface(cands[a].face, cands[b].face, eps)) parent[root(int(b))] = root(int(a));
@@ -596,7 +596,7 @@ void group_by_surface(std::vector<Candidate>& cands, BoundaryContext& c) {
     }
     cands.swap(merged);
   }
-  c.boundary_tol = std::max(100 * eps, Settings::fit_error_margin * out.fit_error);
+  c.boundary_tol = std::max(Settings::section_boundary_margin * eps, Settings::fit_error_margin * out.fit_error);
   if (settings.orbit_sections) cands = cut_where_through_itself(cands, j, eps, c.boundary_tol);
   out.candidates = int(cands.size());
   out.seconds["groups"] = since(t_groups);
@@ -623,7 +623,7 @@ Crossings crossings_of(const std::vector<Candidate>& cands, BoundaryContext& c) 
   const auto t_sec = Clock::now();
   const std::size_t n = cands.size();
   std::vector<Bnd_Box> boxes(n);
-  for (std::size_t i = 0; i < n; ++i) boxes[i] = box_of(cands[i].face, 10 * eps);
+  for (std::size_t i = 0; i < n; ++i) boxes[i] = box_of(cands[i].face, Settings::candidate_box_gap * eps);
   std::vector<std::pair<std::size_t, std::size_t>> pairs;
   for (std::size_t a = 0; a < n; ++a)
     for (std::size_t b = a + 1; b < n; ++b) {
@@ -674,7 +674,8 @@ Crossings crossings_of(const std::vector<Candidate>& cands, BoundaryContext& c) 
         // traced once for every face of the sweep: each splits the faces it lies on (a sweep cut
         // where it passes through itself has faces on other sheets)
         for (const auto& e : *touch_edges[touch_job[k]]) {
-          const int sides = (on_surface_of(e, fa, 10 * tol) ? 1 : 0) | (on_surface_of(e, fb, 10 * tol) ? 2 : 0);
+          const int sides = (on_surface_of(e, fa, Settings::touching_on_face * tol) ? 1 : 0) |
+                            (on_surface_of(e, fb, Settings::touching_on_face * tol) ? 2 : 0);
           if (sides == 0) continue;
           pair_edges[k].push_back(e);
           pair_sides[k].push_back(sides);
@@ -861,8 +862,8 @@ std::vector<int> classify_pieces(const std::vector<Piece>& all, const PointTestM
         }
         return 2;
       };
-      keep[i] = decide(face_samples(all[i].face, 4));
-      if (keep[i] == 2) keep[i] = decide(edge_samples(all[i].face, 12));
+      keep[i] = decide(face_samples(all[i].face, Settings::classify_grid));
+      if (keep[i] == 2) keep[i] = decide(edge_samples(all[i].face, Settings::classify_edge_samples));
     };
   });
   out.seconds["classification"] = out.seconds.value("classification", 0.0) + since(t_cls);

@@ -11,7 +11,7 @@ namespace sweep::occt {
 
 bool add_surface_point(const BRepAdaptor_Surface& S, const TopoDS_Face& f, const gp_Pnt2d& uv,
                        std::vector<SurfacePoint>& out) {
-  BRepLProp_SLProps props(S, uv.X(), uv.Y(), 1, 1e-9);
+  BRepLProp_SLProps props(S, uv.X(), uv.Y(), 1, Settings::normal_resolution);
   if (!props.IsNormalDefined()) return false;
   gp_Vec nn(props.Normal());
   if (f.Orientation() == TopAbs_REVERSED) nn.Reverse();
@@ -23,7 +23,7 @@ std::vector<SurfacePoint> face_samples(const TopoDS_Face& f, int n) {
   std::vector<SurfacePoint> out;
   double u0, u1, v0, v1;
   BRepTools::UVBounds(f, u0, u1, v0, v1);
-  BRepTopAdaptor_FClass2d fc(f, 1e-9);
+  BRepTopAdaptor_FClass2d fc(f, Settings::face_sample_classifier_tolerance);
   BRepAdaptor_Surface S(f);
   for (int a = 0; a < n; ++a)
     for (int b = 0; b < n; ++b) {
@@ -39,10 +39,10 @@ Facing facing_of(const TopoDS_Face& f, const VelocityField& field, double size) 
   for (const auto& s : face_samples(f, 7)) {
     const Eigen::Vector3d v = field.at(to_eigen(s.p));
     const double speed = v.norm();
-    if (speed < 1e-12 * size) continue;  // on the axis
+    if (speed < Settings::on_axis_speed * size) continue;  // on the axis
     const double c = to_eigen(s.n).dot(v) / speed;
-    if (c > 1e-9) ++pos;
-    else if (c < -1e-9) ++neg;
+    if (c > Settings::tangent_motion) ++pos;
+    else if (c < -Settings::tangent_motion) ++neg;
     else ++zero;
   }
   if (pos == 0 && neg == 0) return zero > 0 ? Facing::Slides : Facing::Unknown;

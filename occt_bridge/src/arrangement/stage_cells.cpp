@@ -61,14 +61,14 @@ std::vector<InwardPoint> inward_points(const TopoDS_Face& f, std::initializer_li
                                        std::initializer_list<double> bs) {
   double u0, u1, v0, v1;
   BRepTools::UVBounds(f, u0, u1, v0, v1);
-  BRepTopAdaptor_FClass2d fc(f, 1e-9);
+  BRepTopAdaptor_FClass2d fc(f, Settings::face_sample_classifier_tolerance);
   const BRepAdaptor_Surface S(f);
   std::vector<InwardPoint> out;
   for (double a : as)
     for (double b : bs) {
       const gp_Pnt2d uv(u0 + a * (u1 - u0), v0 + b * (v1 - v0));
       if (fc.Perform(uv) != TopAbs_IN) continue;
-      BRepLProp_SLProps props(S, uv.X(), uv.Y(), 1, 1e-9);
+      BRepLProp_SLProps props(S, uv.X(), uv.Y(), 1, Settings::normal_resolution);
       if (!props.IsNormalDefined()) continue;
       gp_Dir n = props.Normal();
       if (f.Orientation() != TopAbs_REVERSED) n.Reverse();
@@ -86,12 +86,12 @@ bool thin_cell_point(const TopoDS_Solid& cell, double size, Eigen::Vector3d* out
   for (TopExp_Explorer ex(cell, TopAbs_FACE); ex.More(); ex.Next())
     for (const auto& [p, n] :
          inward_points(TopoDS::Face(ex.Current()), {0.5, 0.29, 0.71, 0.13, 0.87}, {0.5, 0.31, 0.69, 0.17, 0.83})) {
-      hits.Perform(gp_Lin(p, n), 1e-7 * size, 2 * size);
+      hits.Perform(gp_Lin(p, n), Settings::thin_cell_ray_start * size, 2 * size);
       if (!hits.IsDone() || hits.NbPnt() == 0) continue;
       double w = 2 * size;
       for (int k = 1; k <= hits.NbPnt(); ++k) w = std::min(w, hits.WParameter(k));
       const gp_Pnt mid = p.Translated(gp_Vec(n) * (0.5 * w));
-      if (BRepClass3d_SolidClassifier(cell, mid, 1e-10 * size).State() == TopAbs_IN) {
+      if (BRepClass3d_SolidClassifier(cell, mid, Settings::thin_cell_classifier * size).State() == TopAbs_IN) {
         *out = to_eigen(mid);
         return true;
       }
@@ -102,7 +102,8 @@ bool thin_cell_point(const TopoDS_Solid& cell, double size, Eigen::Vector3d* out
 /// A point inside the solid cell, a small step inward from one of its faces (or, for a thin cell,
 /// thin_cell_point's).
 bool interior_point(const TopoDS_Solid& cell, double size, Eigen::Vector3d* out) {
-  for (double frac : {1e-3, 1e-4, 1e-5})
+  const double offset = Settings::cell_interior_offset;
+  for (double frac : {offset, offset / 10, offset / 100})
     for (TopExp_Explorer ex(cell, TopAbs_FACE); ex.More(); ex.Next())
       for (const auto& [p, n] :
            inward_points(TopoDS::Face(ex.Current()), {0.5, 0.37, 0.63, 0.21, 0.79}, {0.5, 0.41, 0.59, 0.27, 0.73})) {
@@ -236,7 +237,7 @@ std::vector<TopoDS_Solid> swept_cells(const PointTestMaker& membership, double s
     if (!interior_point(cell, size, &p)) {
       GProp_GProps g;
       BRepGProp::VolumeProperties(cell, g);
-      if (std::abs(g.Mass()) < 1e-9 * size * size * size) continue;  // a sliver of nothing
+      if (std::abs(g.Mass()) < Settings::sliver_cell_volume * size * size * size) continue;  // a sliver of nothing
       throw ComputeError("no interior point found for a cell of volume " + std::to_string(g.Mass()));
     }
     if (member(p)) kept.push_back(cell);
@@ -276,7 +277,8 @@ void arrange(const std::vector<TopoDS_Face>& faces, double fuzzy, BOPAlgo_MakerV
     for (const auto& f : faces) bb.Add(comp, f);
     BRepTools::Write(comp, dump);
   }
-  for (double factor : {1.0, 0.1, 10.0}) {
+  const double step = Settings::arrangement_fuzzy_factor;
+  for (double factor : {1.0, 1 / step, step}) {
     mv.Clear();
     mv.SetArguments(args);
     mv.SetRunParallel(true);

@@ -140,7 +140,7 @@ ProfilePoint profile(const Carried& p, const OrbitFrame& ax, double b) {
 }
 
 /// Samples of a profile for finding where it crosses: N + 1 points evenly spaced in its parameter.
-constexpr int kSamples = 96;
+constexpr int kSamples = Settings::orbit_profile_samples;
 
 /// The profile's sample points, and the largest distance of a profile point halfway between two
 /// samples from their chord (a bound on how far the polyline strays from the profile).
@@ -172,8 +172,9 @@ std::pair<double, double> closest_on_segments(const Eigen::Vector2d& p, const Ei
 double closest_profile_points(const Carried& a, const Carried& b, const OrbitFrame& ax, double& ba, double& bb) {
   ProfilePoint A = profile(a, ax, ba), B = profile(b, ax, bb);
   Eigen::Vector2d F = A.m - B.m;
-  double lambda = 1e-12;
-  for (int it = 0; it < 100 && F.norm() > 0; ++it) {
+  const double least_damping = Settings::profile_solve_damping;
+  double lambda = least_damping;
+  for (int it = 0; it < Settings::profile_solve_iterations && F.norm() > 0; ++it) {
     Eigen::Matrix2d J;
     J.col(0) = A.dm;
     J.col(1) = -B.dm;
@@ -187,13 +188,14 @@ double closest_profile_points(const Carried& a, const Carried& b, const OrbitFra
     const ProfilePoint A2 = profile(a, ax, na), B2 = profile(b, ax, nb);
     const Eigen::Vector2d F2 = A2.m - B2.m;
     if (F2.norm() < F.norm()) {
-      const bool moved = std::abs(na - ba) > 1e-15 * (1 + std::abs(ba)) || std::abs(nb - bb) > 1e-15 * (1 + std::abs(bb));
+      const bool moved = std::abs(na - ba) > Settings::profile_solve_step * (1 + std::abs(ba)) ||
+                         std::abs(nb - bb) > Settings::profile_solve_step * (1 + std::abs(bb));
       ba = na, bb = nb, A = A2, B = B2, F = F2;
-      lambda = std::max(1e-12, lambda * 0.1);
+      lambda = std::max(least_damping, lambda * 0.1);
       if (!moved) break;
     } else {
       lambda *= 10;
-      if (lambda > 1e8) break;
+      if (lambda > Settings::profile_solve_max_damping) break;
     }
   }
   return F.norm();
@@ -210,7 +212,7 @@ std::vector<std::pair<double, double>> overlapping_ranges(const OrbitFrame& ax, 
     return out;
   }
   const double full = 2 * M_PI;
-  const bool whole_a = la >= full - 1e-12, whole_b = lb >= full - 1e-12;
+  const bool whole_a = la >= full - Settings::angle_resolution, whole_b = lb >= full - Settings::angle_resolution;
   if (whole_a && whole_b) return {{0.0, full}};
   if (whole_a) return {{sb, lb}};
   if (whole_b) return {{sa, la}};
@@ -235,7 +237,8 @@ bool bounded_by_its_box(const TopoDS_Face& face, double u0, double u1, double v0
   int wires = 0;
   for (TopExp_Explorer wx(face, TopAbs_WIRE); wx.More(); wx.Next()) ++wires;
   if (wires != 1) return false;
-  const double tu = 1e-9 * (1 + std::abs(u0) + std::abs(u1)), tv = 1e-9 * (1 + std::abs(v0) + std::abs(v1));
+  const double tu = Settings::box_side_resolution * (1 + std::abs(u0) + std::abs(u1));
+  const double tv = Settings::box_side_resolution * (1 + std::abs(v0) + std::abs(v1));
   for (TopExp_Explorer ex(face, TopAbs_EDGE); ex.More(); ex.Next()) {
     double f, l;
     const Handle(Geom2d_Curve) pc = BRep_Tool::CurveOnSurface(TopoDS::Edge(ex.Current()), face, f, l);
@@ -277,7 +280,8 @@ std::optional<TopoDS_Edge> helix_section(const Carried& a, const Carried& b, con
     return p;
   };
   const int quarter_turns = std::max(1, int(std::ceil(len / (0.5 * M_PI))));
-  for (int n = 8 * quarter_turns; n <= 128 * quarter_turns; n *= 2) {
+  for (int n = Settings::helix_section_samples_first * quarter_turns;
+       n <= Settings::helix_section_samples_last * quarter_turns; n *= 2) {
     TColgp_Array1OfPnt pts(1, n + 1);
     for (int k = 0; k <= n; ++k) {
       const auto p = crossing(start + len * k / n);
@@ -310,8 +314,10 @@ std::vector<std::pair<double, double>> self_crossing_pairs(const Carried& p, con
   constexpr int N = kSamples;
   std::vector<Eigen::Vector2d> m;
   const double sag = sampled_profile(p, ax, m);
-  const double near = 8 * sag + 10 * boundary_tol, step = (p.b1 - p.b0) / N;
-  const double apart = 1e-7 * std::abs(p.b1 - p.b0);
+  // (one profile: its sag counted for both)
+  const double near = 2 * Settings::orbit_near_sags * sag + Settings::orbit_near_tols * boundary_tol;
+  const double step = (p.b1 - p.b0) / N;
+  const double apart = Settings::self_crossing_apart * std::abs(p.b1 - p.b0);
   std::vector<std::pair<double, double>> out;
   for (int i = 0; i < N; ++i)
     for (int k = i + 2; k < N; ++k) {
@@ -435,7 +441,7 @@ std::optional<OrbitPatch> orbit_patch(const TopoDS_Face& face, const ScrewJoint&
     p.a0 = orbit_is_u ? u0 : v0, p.a1 = orbit_is_u ? u1 : v1;
     p.b0 = orbit_is_u ? v0 : u0, p.b1 = orbit_is_u ? v1 : u1;
     const double da = p.a1 - p.a0;
-    if (turning && da > 2 * M_PI + 1e-9) return std::nullopt;
+    if (turning && da > 2 * M_PI + Settings::whole_period_margin) return std::nullopt;
     auto point = [&](double a, double b) { return to_eigen(orbit_is_u ? surface.Value(a, b) : surface.Value(b, a)); };
     // whether moving by `rate` per unit of the orbit parameter follows the surface at sample points
     bool off_axis = false;
@@ -443,7 +449,7 @@ std::optional<OrbitPatch> orbit_patch(const TopoDS_Face& face, const ScrewJoint&
       for (double fb : {0.2, 0.5, 0.8}) {
         const double b = p.b0 + fb * (p.b1 - p.b0);
         const Eigen::Vector3d x0 = point(p.a0, b);
-        if (ax.radial(x0).norm() > 1e3 * eps) off_axis = true;
+        if (ax.radial(x0).norm() > Settings::orbit_patch_extent * eps) off_axis = true;
         for (double fa : {0.25, 0.5, 1.0})
           if ((ax.moved(x0, rate * fa * da) - point(p.a0 + fa * da, b)).norm() > eps) return false;
       }
@@ -457,7 +463,8 @@ std::optional<OrbitPatch> orbit_patch(const TopoDS_Face& face, const ScrewJoint&
     }
     const double b = 0.5 * (p.b0 + p.b1);
     const double rate = (ax.along(point(p.a1, b)) - ax.along(point(p.a0, b))) / da;
-    if (std::abs(rate) * da > (helix ? 1e-6 : 1e3 * eps) && follows(rate)) {
+    if (std::abs(rate) * da > (helix ? Settings::orbit_patch_min_turn : Settings::orbit_patch_extent * eps) &&
+        follows(rate)) {
       p.rate = rate;
       return p;
     }
@@ -476,7 +483,7 @@ std::vector<double> profile_self_crossings(const OrbitPatch& patch, const ScrewJ
     if (overlapping_ranges(ax, sa, la, sb, lb, ax.min_length(profile(p, ax, ba).m, boundary_tol)).empty()) continue;
     // (and halfway between: a piece from ba to bb would begin and end on one line)
     for (double c : {ba, 0.5 * (ba + bb), bb}) {
-      const double apart = 1e-7 * std::abs(p.b1 - p.b0);
+      const double apart = Settings::self_crossing_apart * std::abs(p.b1 - p.b0);
       bool known = std::abs(c - p.b0) < apart || std::abs(c - p.b1) < apart;
       for (double x : cuts) known = known || std::abs(x - c) < apart;
       if (!known) cuts.push_back(c);
@@ -493,8 +500,10 @@ std::vector<PatchPiece> patch_pieces(const OrbitPatch& patch, const std::vector<
   at.push_back(std::max(patch.b0, patch.b1));
   std::vector<PatchPiece> out;
   for (std::size_t k = 0; k + 1 < at.size(); ++k) {
-    BRepBuilderAPI_MakeFace mk = patch.orbit_is_u ? BRepBuilderAPI_MakeFace(surface, patch.a0, patch.a1, at[k], at[k + 1], 1e-7)
-                                                  : BRepBuilderAPI_MakeFace(surface, at[k], at[k + 1], patch.a0, patch.a1, 1e-7);
+    const double degen = Settings::profile_piece_degenerate;
+    BRepBuilderAPI_MakeFace mk =
+        patch.orbit_is_u ? BRepBuilderAPI_MakeFace(surface, patch.a0, patch.a1, at[k], at[k + 1], degen)
+                         : BRepBuilderAPI_MakeFace(surface, at[k], at[k + 1], patch.a0, patch.a1, degen);
     if (!mk.IsDone()) return {};
     TopoDS_Face f = mk.Face();
     if (patch.face.Orientation() == TopAbs_REVERSED) f.Reverse();
@@ -515,7 +524,7 @@ std::optional<std::vector<TopoDS_Edge>> orbit_section(const OrbitPatch& patch_a,
   constexpr int N = kSamples;
   std::vector<Eigen::Vector2d> ma, mb;
   const double sag_a = sampled_profile(a, ax, ma), sag_b = sampled_profile(b, ax, mb);
-  const double near = 4 * (sag_a + sag_b) + 10 * boundary_tol;
+  const double near = Settings::orbit_near_sags * (sag_a + sag_b) + Settings::orbit_near_tols * boundary_tol;
 
   // One profile (pieces of one curve's sweep): the faces meet along an edge across the orbits at most.
   bool same = true, reversed = true;
@@ -563,14 +572,16 @@ std::optional<std::vector<TopoDS_Edge>> orbit_section(const OrbitPatch& patch_a,
       double ba = a.b0 + (a.b1 - a.b0) * (i + s) / N, bb = b.b0 + (b.b1 - b.b0) * (k + t) / N;
       const double dist = closest_profile_points(a, b, ax, ba, bb);
       if (dist > boundary_tol) {
-        if (gap <= 1e-12 * (1 + p.norm())) return std::nullopt;  // the polylines cross but no crossing was found
-        continue;                                                // they pass near each other
+        // the polylines cross but no crossing was found
+        if (gap <= Settings::polyline_crossing_rounding * (1 + p.norm())) return std::nullopt;
+        continue;  // they pass near each other
       }
       const ProfilePoint A = profile(a, ax, ba), B = profile(b, ax, bb);
       // (a solve from a start farther than `near` from the first may find the same crossing again)
       bool again = false;
       for (const auto& r : interior)
-        again = again || (std::abs(r.ba - ba) <= 1e-6 * std::abs(a.b1 - a.b0) && std::abs(r.bb - bb) <= 1e-6 * std::abs(b.b1 - b.b0));
+        again = again || (std::abs(r.ba - ba) <= Settings::crossing_found_again * std::abs(a.b1 - a.b0) &&
+                          std::abs(r.bb - bb) <= Settings::crossing_found_again * std::abs(b.b1 - b.b0));
       if (again) continue;
       touches.push_back(A.m);
       auto at_end = [&](const Carried& pp, const Eigen::Vector2d& x) {

@@ -45,7 +45,7 @@ Handle(Geom_Surface) form_surface(const PatchForm& f) {
     case PatchForm::Kind::Plane: return new Geom_Plane(frame);
     case PatchForm::Kind::Cylinder: return new Geom_CylindricalSurface(frame, f.radius);
     case PatchForm::Kind::Cone:
-      if (!(std::abs(f.semi_angle) > 1e-12 && std::abs(f.semi_angle) < M_PI / 2)) return nullptr;
+      if (!(std::abs(f.semi_angle) > Settings::angle_resolution && std::abs(f.semi_angle) < M_PI / 2)) return nullptr;
       return new Geom_ConicalSurface(frame, f.semi_angle, f.radius);
     case PatchForm::Kind::Sphere: return new Geom_SphericalSurface(frame, f.radius);
     case PatchForm::Kind::Torus: return new Geom_ToroidalSurface(frame, f.radius, f.minor);
@@ -55,7 +55,7 @@ Handle(Geom_Surface) form_surface(const PatchForm& f) {
 
 /// The sides that bound the patch (bounding_sides), counter-clockwise, as points.
 std::vector<std::vector<gp_Pnt>> boundary_sides(const Patch& p, double tol) {
-  const int n = 64;
+  const int n = Settings::patch_side_samples;
   std::vector<std::vector<gp_Pnt>> out;
   for (int k : bounding_sides(p, tol, n)) {
     out.emplace_back();
@@ -71,7 +71,7 @@ TopoDS_Edge side_edge(const std::vector<gp_Pnt>& side, double tol) {
   const gp_Pnt &a = side.front(), &m = side[side.size() / 2], &b = side.back();
   double size = 0;
   for (const gp_Pnt& q : side) size = std::max(size, q.Distance(a));
-  const double exact = 1e-13 * std::max(size, 1.0);
+  const double exact = Settings::patch_side_rounding * std::max(size, 1.0);
   const gp_Vec ab(a, b), am(a, m);
   if (ab.Magnitude() > exact && am.Crossed(ab).Magnitude() <= exact * ab.Magnitude()) {
     const gp_Lin line(a, gp_Dir(ab));
@@ -147,7 +147,7 @@ TopoDS_Face bounded_face(const Handle(Geom_Surface)& surface, const Patch& p, do
 /// The largest distance from a grid of patch points to the face's surface.
 double measured_error(const Patch& p, const TopoDS_Face& face, bool own_parameters) {
   const Handle(Geom_Surface) s = BRep_Tool::Surface(face);
-  const int n = 16;
+  const int n = Settings::patch_error_grid;
   double e = 0;
   for (int i = 0; i <= n; ++i)
     for (int k = 0; k <= n; ++k) {
@@ -229,14 +229,15 @@ double ruled_error(const Patch& p, int k, const Handle(Geom_BSplineCurve) sides[
 
 /// The face of a ruled patch within tol, with its measured error; null when none is.
 TopoDS_Face ruled_face(const Patch& p, double tol, double* error) {
-  const int k = straight_parameter(p, 1e-3 * tol);
+  const int k = straight_parameter(p, Settings::ruled_straightness * tol);
   if (k < 0) return {};
-  for (int samples : {64, 256, 1024}) {
+  const int n = Settings::ruled_side_samples;
+  for (int samples : {n, 4 * n, 16 * n}) {
     Handle(Geom_BSplineCurve) sides[2];
     if (!ruled_sides(p, k, tol, samples, sides)) return {};
-    const double e = ruled_error(p, k, sides, 24);
+    const double e = ruled_error(p, k, sides, Settings::ruled_error_grid);
     if (!(e <= tol)) continue;
-    BRepBuilderAPI_MakeFace mf(GeomFill::Surface(sides[0], sides[1]), 1e-3 * tol);
+    BRepBuilderAPI_MakeFace mf(GeomFill::Surface(sides[0], sides[1]), Settings::ruled_face_degenerate * tol);
     if (!mf.IsDone()) return {};
     *error = e;
     return mf.Face();
@@ -252,7 +253,7 @@ TopoDS_Face oriented(const TopoDS_Face& face, const Patch& p) {
   if (proj.NbPoints() == 0) return face;
   double u, v;
   proj.LowerDistanceParameters(u, v);
-  BRepLProp_SLProps props(BRepAdaptor_Surface(face, false), u, v, 1, 1e-9);
+  BRepLProp_SLProps props(BRepAdaptor_Surface(face, false), u, v, 1, Settings::normal_resolution);
   if (!props.IsNormalDefined()) return face;
   Eigen::Vector3d n = to_eigen(gp_Vec(props.Normal()));
   if (face.Orientation() == TopAbs_REVERSED) n = -n;
@@ -300,9 +301,11 @@ PatchFace patch_face(const Patch& p, double tol) {
         return to_pnt(p.eval(p.lo(0) + (p.hi(0) - p.lo(0)) * fu, p.lo(1) + (p.hi(1) - p.lo(1)) * fv).x);
       };
       double err = 0;
-      const Handle(Geom_BSplineSurface) fitted = fit_grid_surface(exact, tol, 0.1 * tol, 16, 256, &err);
+      const Handle(Geom_BSplineSurface) fitted =
+          fit_grid_surface(exact, tol, Settings::patch_fit_approx * tol, Settings::patch_fit_grid_first,
+                           Settings::patch_fit_grid_last, &err);
       if (fitted.IsNull()) throw ComputeError("no B-spline fits '" + p.what() + "'");
-      BRepBuilderAPI_MakeFace mf(fitted, std::max(err, 1e-9 * tol));
+      BRepBuilderAPI_MakeFace mf(fitted, std::max(err, Settings::patch_face_min_tolerance * tol));
       if (!mf.IsDone()) throw ComputeError("no face on the B-spline of '" + p.what() + "'");
       out.face = mf.Face();
       out.exact = false;

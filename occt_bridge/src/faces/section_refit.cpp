@@ -26,7 +26,7 @@ std::optional<gp_Pnt> point_on_both(const BRepAdaptor_Surface& A, const BRepAdap
                               const gp_Vec& t, gp_Pnt2d uva, gp_Pnt2d uvb, double tol) {
   Eigen::Vector4d x(uva.X(), uva.Y(), uvb.X(), uvb.Y());
   const Eigen::Vector3d tt = to_eigen(t), pp = to_eigen(p);
-  for (int it = 0; it < 30; ++it) {
+  for (int it = 0; it < Settings::point_on_both_iterations; ++it) {
     gp_Pnt Pa, Pb;
     gp_Vec Au, Av, Bu, Bv;
     A.D1(x(0), x(1), Pa, Au, Av);
@@ -35,7 +35,9 @@ std::optional<gp_Pnt> point_on_both(const BRepAdaptor_Surface& A, const BRepAdap
     Eigen::Vector4d F;
     F.head<3>() = a - b;
     F(3) = tt.dot(a - pp);
-    if (F.head<3>().norm() <= 1e-3 * tol && std::abs(F(3)) <= 1e-3 * tol) return Pa;
+    if (F.head<3>().norm() <= Settings::section_point_precision * tol &&
+        std::abs(F(3)) <= Settings::section_point_precision * tol)
+      return Pa;
     Eigen::Matrix4d J = Eigen::Matrix4d::Zero();
     J.block<3, 1>(0, 0) = to_eigen(Au);
     J.block<3, 1>(0, 1) = to_eigen(Av);
@@ -58,13 +60,14 @@ TopoDS_Edge refitted_section_edge(const TopoDS_Edge& e, const TopoDS_Face& a, co
   const Handle(Geom_Curve) c = BRep_Tool::Curve(e, f, l);
   const Handle(Geom2d_Curve) pa = BRep_Tool::CurveOnSurface(e, a, fa, la);
   const Handle(Geom2d_Curve) pb = BRep_Tool::CurveOnSurface(e, b, fb, lb);
-  if (c.IsNull() || pa.IsNull() || pb.IsNull() || std::abs(fa - f) > 1e-9 * (1 + std::abs(f)) ||
-      std::abs(fb - f) > 1e-9 * (1 + std::abs(f)) || std::abs(la - l) > 1e-9 * (1 + std::abs(l)) ||
-      std::abs(lb - l) > 1e-9 * (1 + std::abs(l)))
+  const double r = Settings::refit_range_resolution;
+  if (c.IsNull() || pa.IsNull() || pb.IsNull() || std::abs(fa - f) > r * (1 + std::abs(f)) ||
+      std::abs(fb - f) > r * (1 + std::abs(f)) || std::abs(la - l) > r * (1 + std::abs(l)) ||
+      std::abs(lb - l) > r * (1 + std::abs(l)))
     return e;
   const BRepAdaptor_Surface A(a), B(b);
   ShapeAnalysis_Surface on_a(BRep_Tool::Surface(a)), on_b(BRep_Tool::Surface(b));
-  const double stray = 10 * BRep_Tool::Tolerance(e);
+  const double stray = Settings::refit_stray_tolerances * BRep_Tool::Tolerance(e);
   auto refined = [&](double s) -> std::optional<gp_Pnt> {
     gp_Pnt p;
     gp_Vec t;
@@ -74,7 +77,7 @@ TopoDS_Edge refitted_section_edge(const TopoDS_Edge& e, const TopoDS_Face& a, co
     if (!q || q->Distance(p) > stray) return std::nullopt;
     return q;
   };
-  for (int m = 32; m <= 512; m *= 2) {
+  for (int m = Settings::refit_samples_first; m <= Settings::refit_samples_last; m *= 2) {
     TColgp_Array1OfPnt pts(1, m + 1);
     bool ok = true;
     for (int k = 0; k <= m && ok; ++k) {
@@ -101,8 +104,8 @@ TopoDS_Edge refitted_section_edge(const TopoDS_Edge& e, const TopoDS_Face& a, co
       double stray_here = proj.LowerDistance();
       if (stray_here > tol) {
         const gp_Pnt x = proj.NearestPoint();
-        stray_here = std::max(on_a.Value(on_a.ValueOfUV(x, 1e-3 * tol)).Distance(x),
-                              on_b.Value(on_b.ValueOfUV(x, 1e-3 * tol)).Distance(x));
+        stray_here = std::max(on_a.Value(on_a.ValueOfUV(x, Settings::section_point_precision * tol)).Distance(x),
+                              on_b.Value(on_b.ValueOfUV(x, Settings::section_point_precision * tol)).Distance(x));
       }
       worst = std::max(worst, stray_here);
     }

@@ -77,7 +77,7 @@ std::function<double(const gp_Pnt&)> distance_function(const TopoDS_Face& face) 
     default: {
       const auto projector = std::make_shared<ShapeAnalysis_Surface>(BRep_Tool::Surface(face));
       return [projector](const gp_Pnt& x) {
-        const gp_Pnt2d uv = projector->ValueOfUV(x, 1e-12);
+        const gp_Pnt2d uv = projector->ValueOfUV(x, Settings::surface_projection_precision);
         gp_Pnt p;
         gp_Vec du, dv;
         projector->Surface()->D1(uv.X(), uv.Y(), p, du, dv);
@@ -96,10 +96,11 @@ class FaceMembership {
   explicit FaceMembership(const TopoDS_Face& f)
       : surf_(BRep_Tool::Surface(f)), projector_(surf_) {
     BRepTools::UVBounds(f, u0_, u1_, v0_, v1_);
-    cls_ = std::make_unique<BRepTopAdaptor_FClass2d>(f, 1e-9 * std::max(u1_ - u0_, v1_ - v0_));
+    const double uvtol = Settings::parameter_resolution * std::max(u1_ - u0_, v1_ - v0_);
+    cls_ = std::make_unique<BRepTopAdaptor_FClass2d>(f, uvtol);
   }
   bool contains(const gp_Pnt& x) {
-    gp_Pnt2d uv = projector_.ValueOfUV(x, 1e-12);
+    gp_Pnt2d uv = projector_.ValueOfUV(x, Settings::surface_projection_precision);
     double u = uv.X(), v = uv.Y();
     if (surf_->IsUPeriodic()) u = wrap(u, u0_, u1_, surf_->UPeriod());
     if (surf_->IsVPeriodic()) v = wrap(v, v0_, v1_, surf_->VPeriod());
@@ -170,7 +171,7 @@ std::vector<std::vector<UV>> runs_where(const ContourFunction& h, const std::vec
       const UV d = dense[k] - dense[k - 1];
       auto on_contour = [&](double lambda) { return root_across(h, dense[k - 1] + lambda * d, d); };
       double a = 0, b = 1;
-      for (int it = 0; it < 50; ++it) {
+      for (int it = 0; it < Settings::traced_run_bisections; ++it) {
         const double m = 0.5 * (a + b);
         (good(on_contour(m)) == prev_in ? a : b) = m;
       }
@@ -199,7 +200,7 @@ std::vector<std::vector<UV>> cut_at_times(const ContourFunction& h, const std::v
       auto on_contour = [&](double lambda) { return root_across(h, r[k] + lambda * d, d); };
       const bool below = r[k].y() < tb;
       double a = 0, b = 1;
-      for (int it = 0; it < 50; ++it) {
+      for (int it = 0; it < Settings::traced_run_bisections; ++it) {
         const double m = 0.5 * (a + b);
         ((on_contour(m).y() < tb) == below ? a : b) = m;
       }
@@ -210,7 +211,8 @@ std::vector<std::vector<UV>> cut_at_times(const ContourFunction& h, const std::v
     pieces.back().push_back(r[k + 1]);
     // (a point of the run on a break, as where the contour's grid has a line there)
     bool on_break = false;
-    for (const double tb : breaks) on_break = on_break || std::abs(r[k + 1].y() - tb) <= 1e-12 * (1 + std::abs(tb));
+    for (const double tb : breaks)
+      on_break = on_break || std::abs(r[k + 1].y() - tb) <= Settings::traced_break_rounding * (1 + std::abs(tb));
     if (on_break && k + 2 < r.size()) pieces.push_back({r[k + 1]});
   }
   return pieces;
@@ -273,7 +275,7 @@ std::optional<std::vector<TopoDS_Edge>> touching_section(const TouchingSweep& sw
   auto d = [&](double s, double t) { return dist(at(s, t)); };
   // h = (d(s, t) - d(s, t*)) / (t - t*)^2; within tau of t* it is interpolated between its limit
   // at t* (extrapolated from tau and 2 tau) and its value at tau, where rounding would dominate.
-  const double tau = 1e-3 * sw.T, side = t_touch > 0.5 * sw.T ? -1.0 : 1.0;
+  const double tau = Settings::touching_time_band * sw.T, side = t_touch > 0.5 * sw.T ? -1.0 : 1.0;
   auto h_raw = [&](double s, double dt) { return (d(s, t_touch + side * dt) - d(s, t_touch)) / (dt * dt); };
   const ContourFunction h = [&](const UV& p) {
     const double dt = std::abs(p.y() - t_touch);
@@ -282,7 +284,7 @@ std::optional<std::vector<TopoDS_Edge>> touching_section(const TouchingSweep& sw
     return h0 + (h1 - h0) * dt / tau;
   };
   const int grid = Settings::traced_section_grid;
-  const auto chains = contour_chains(h, sw.first, sw.last, 0, sw.T, grid, grid, 1e-12 * size);
+  const auto chains = contour_chains(h, sw.first, sw.last, 0, sw.T, grid, grid, Settings::traced_section_flat * size);
   FaceMembership member(copy);
   const double stray = Settings::traced_section_stray * size;
   std::vector<TopoDS_Edge> edges;
@@ -292,12 +294,12 @@ std::optional<std::vector<TopoDS_Edge>> touching_section(const TouchingSweep& sw
     auto good = [&](const UV& p) {
       return std::abs(d(p.x(), p.y()) - d(p.x(), t_touch)) <= stray && member.contains(at(p.x(), p.y()));
     };
-    // (a run within 1e-4 of the size is a point where the curve meets the joint's axis: its orbit
-    // is that point, on the copy at every t)
+    // (a run within Settings::touching_run_min_reach of the size is a point where the curve meets
+    // the joint's axis: its orbit is that point, on the copy at every t)
     for (const std::vector<UV>& r : runs_where(h, dense, good)) {
       double reach = 0;
       for (const UV& p : r) reach = std::max(reach, at_uv(p).Distance(at_uv(r.front())));
-      if (reach < 1e-4 * size) continue;
+      if (reach < Settings::touching_run_min_reach * size) continue;
       for (const std::vector<UV>& piece : cut_at_times(h, r, sw.breaks))
         if (!fitted_edges(piece, h, at_uv, tol, size, 0, 0, edges, fit_err)) return std::nullopt;
     }
@@ -319,8 +321,8 @@ std::optional<std::vector<TopoDS_Edge>> section_by_distance(const TopoDS_Face& a
   const std::function<gp_Pnt(const UV&)> at = [&](const UV& p) { return S.Value(p.x(), p.y()); };
   const ContourFunction h = [&](const UV& p) { return dist(at(p)); };
   const int grid = Settings::traced_section_grid;
-  const auto chains = contour_chains(h, u0, u1, v0, v1, grid, grid, 1e-12 * size);
-  BRepTopAdaptor_FClass2d in_a(a, 1e-9 * std::max(u1 - u0, v1 - v0));
+  const auto chains = contour_chains(h, u0, u1, v0, v1, grid, grid, Settings::traced_section_flat * size);
+  BRepTopAdaptor_FClass2d in_a(a, Settings::parameter_resolution * std::max(u1 - u0, v1 - v0));
   FaceMembership in_b(b);
   const double stray = Settings::traced_section_stray * size;
   auto good = [&](const UV& p) {

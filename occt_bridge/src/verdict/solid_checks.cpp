@@ -42,7 +42,8 @@ TopoDS_Face integrable_face(const TopoDS_Face& f) {
   TopLoc_Location loc;
   const Handle(Geom_Surface) surface = BRep_Tool::Surface(f, loc);
   try {
-    const double du = 1e-9 * (u1 - u0), dv = 1e-3 * (v1 - v0) + 1e-9;
+    const double du = Settings::bspline_form_curve_margin * (u1 - u0);
+    const double dv = Settings::bspline_form_extrusion_margin * (v1 - v0) + Settings::bspline_form_extrusion_floor;
     const Handle(Geom_BSplineSurface) b = GeomConvert::SurfaceToBSplineSurface(new Geom_RectangularTrimmedSurface(
         surface, std::max(u0 - du, S.FirstUParameter()), std::min(u1 + du, S.LastUParameter()), v0 - dv, v1 + dv));
     // the same parameters: points agree to rounding
@@ -50,7 +51,7 @@ TopoDS_Face integrable_face(const TopoDS_Face& f) {
       for (double c : {0.0, 0.6, 1.0}) {
         const double u = u0 + a * (u1 - u0), v = v0 + c * (v1 - v0);
         const gp_Pnt p = surface->Value(u, v);
-        if (p.Distance(b->Value(u, v)) > 1e-12 * (1 + p.XYZ().Modulus())) return f;
+        if (p.Distance(b->Value(u, v)) > Settings::bspline_form_rounding * (1 + p.XYZ().Modulus())) return f;
       }
     return face_on_surface(f, b);
   } catch (const Standard_Failure&) {
@@ -142,7 +143,7 @@ SolidChecks check_solid(const TopoDS_Shape& result) {
   parallel_for(nf + 4, [&]() -> std::function<void(std::size_t)> {
     return [&](std::size_t task) {
       if (task < 2) {
-        occt_volume_of_faces(part[task], gp_Pnt(P), 1e-10, &volume[task], &moment[task]);
+        occt_volume_of_faces(part[task], gp_Pnt(P), Settings::brep_volume_precision, &volume[task], &moment[task]);
       } else if (task >= 4) {
         div_area[task - 4] = face_divergence_and_area(faces[task - 4].second, P);
       } else if (task == 2) {

@@ -60,7 +60,9 @@ class BackwardPaths {
     const Eigen::Vector3d b = body_box.center();
     c_ = m.transform(m.lo()) * b;
     double reach = 0;
-    for (int k = 0; k <= 256; ++k) reach = std::max(reach, (m.transform(m.lo() + (m.hi() - m.lo()) * k / 256) * b - c_).norm());
+    const int n = Settings::path_reach_samples;
+    for (int k = 0; k <= n; ++k)
+      reach = std::max(reach, (m.transform(m.lo() + (m.hi() - m.lo()) * k / n) * b - c_).norm());
     fit_for(reach + 0.5 * body_box.diagonal().norm());
   }
 
@@ -107,12 +109,13 @@ class BackwardPaths {
     const Eigen::Vector3d foot = j.point + j.direction * j.direction.dot(x - j.point);
     const double r = (x - foot).norm();
     if (j.pitch == 0) {
-      if (r < 1e-12) return nullptr;
+      if (r < Settings::path_on_axis) return nullptr;
       gp_Ax2 ax(to_pnt(foot), gp_Dir(to_vec(-j.direction)), gp_Dir(to_vec((x - foot) / r)));
       Handle(Geom_Circle) c = new Geom_Circle(ax, r);
       return new Geom_TrimmedCurve(c, 0.0, T);
     }
-    const int n = std::max(16, int(std::ceil(T / (M_PI / 32))));
+    const int fewest = Settings::helix_path_min_samples;
+    const int n = std::max(fewest, int(std::ceil(T / (M_PI / Settings::helix_path_samples_per_half_turn))));
     TColgp_Array1OfPnt pts(1, n + 1);
     for (int k = 0; k <= n; ++k) pts.SetValue(k + 1, to_pnt(j.transform(-T * k / n) * x));
     GeomAPI_PointsToBSpline fit(pts, 3, 8, GeomAbs_C2, tol_);
@@ -120,8 +123,9 @@ class BackwardPaths {
   }
 
   /// Fits A(t) and the path of c, spans doubled until points within `reach` of c are within the
-  /// tolerance; fitted_ tells whether a fit of up to 1024 spans (256 for a screw) is. @throws
-  /// ComputeError when none is and the motion is no screw (whose paths have a way out).
+  /// tolerance; fitted_ tells whether a fit of up to Settings::path_fit_spans_max spans
+  /// (Settings::screw_path_fit_spans_max for a screw) is. @throws ComputeError when none is and the
+  /// motion is no screw (whose paths have a way out).
   void fit_for(double reach) {
     const double lo = m_.lo(), L = m_.hi() - lo;
     const auto row = [&](double u) {
@@ -132,8 +136,8 @@ class BackwardPaths {
       return r;
     };
     // (a screw's helices have a way out, point by point; a dense fit of 1024 spans takes seconds)
-    const int most = screw_ ? 256 : 1024;
-    for (int spans = 4; spans <= most; spans *= 2) {
+    const int most = screw_ ? Settings::screw_path_fit_spans_max : Settings::path_fit_spans_max;
+    for (int spans = Settings::path_fit_spans_first; spans <= most; spans *= 2) {
       fit_ = fit_bspline(row, 12, L, degree, spans, 1);
       fitted_ = fit_.error * (1 + std::sqrt(3.0) * reach) <= tol_;
       if (fitted_) return;
@@ -191,7 +195,7 @@ std::vector<double> circle_torus_angles(const gp_Circ& c, const gp_Torus& tor, b
     scale = std::max(scale, std::abs(F[k]));
   }
   std::vector<double> angles;
-  *solved = std::abs(F[4]) > 1e-9 * scale;
+  *solved = std::abs(F[4]) > Settings::circle_torus_leading * scale;
   if (!*solved) return angles;
   // z^2 F = sum F[m] z^m: the roots of this quartic are its companion matrix's eigenvalues
   Eigen::Matrix4cd comp = Eigen::Matrix4cd::Zero();
@@ -206,7 +210,7 @@ std::vector<double> circle_torus_angles(const gp_Circ& c, const gp_Torus& tor, b
     const C z = es.eigenvalues()(k);
     // a root off the unit circle by more than rounding (a double root is found to about the
     // square root of the machine precision) is a point where the circle misses the torus
-    if (std::abs(std::abs(z) - 1.0) > 1e-6) continue;
+    if (std::abs(std::abs(z) - 1.0) > Settings::circle_torus_root_rounding) continue;
     double w = std::arg(z);
     if (w < 0) w += 2 * M_PI;
     angles.push_back(w);
@@ -239,7 +243,7 @@ struct TrajectoryMembership::Impl {
   /// Running cost and success rate of one test.
   struct Stats {
     double seconds = 0, runs = 0, successes = 0;
-    double cost() const { return (seconds + 1e-3) / (runs + 1); }
+    double cost() const { return (seconds + Settings::membership_cost_prior) / (runs + 1); }
     double success() const { return (successes + 1) / (runs + 2); }
     bool record(Clock::time_point t0, bool ok) {
       seconds += std::chrono::duration<double>(Clock::now() - t0).count();
@@ -264,7 +268,7 @@ struct TrajectoryMembership::Impl {
   static bool circle_meets_face(const gp_Circ& c, double T, const gp_Torus& tor, BRepTopAdaptor_FClass2d& fc,
                                 bool* solved) {
     for (double w : circle_torus_angles(c, tor, solved)) {
-      if (w > T + 1e-12 && w < 2 * M_PI - 1e-12) continue;
+      if (w > T + Settings::angle_resolution && w < 2 * M_PI - Settings::angle_resolution) continue;
       if (w > T) w = 0.0;
       double u, v;
       ElSLib::Parameters(tor, ElCLib::Value(w, c), u, v);

@@ -90,8 +90,9 @@ struct EdgeSegments {
       if (pts.IsDone() && pts.NbPoints() >= 2) {
         for (int i = 1; i <= pts.NbPoints(); ++i) p.push_back(to_eigen(pts.Value(i)));
       } else {
-        for (int i = 0; i <= 16; ++i)
-          p.push_back(to_eigen(c.Value(c.FirstParameter() + (c.LastParameter() - c.FirstParameter()) * i / 16)));
+        const int n = Settings::edge_polyline_segments;
+        for (int i = 0; i <= n; ++i)
+          p.push_back(to_eigen(c.Value(c.FirstParameter() + (c.LastParameter() - c.FirstParameter()) * i / n)));
       }
       const std::size_t first = segments.size();
       Eigen::AlignedBox3d box;
@@ -140,7 +141,7 @@ std::vector<Triangle> triangulate(const TopoDS_Shape& shape, double deflection, 
       const TopoDS_Face& f = TopoDS::Face(ex.Current());
       TopLoc_Location loc;
       missing += BRep_Tool::Triangulation(f, loc).IsNull() &&
-                 std::abs(face_area(f)) > std::max(1e-9 * total, sliver_area);
+                 std::abs(face_area(f)) > std::max(Settings::mesh_missing_area * total, sliver_area);
     }
     if (missing > 0) *problem = std::to_string(missing) + " faces have no triangulation";
   }
@@ -155,7 +156,7 @@ std::vector<Triangle> triangulate(const TopoDS_Shape& shape, double deflection, 
     // deflection, so a loss up to pi deflection^2 keeps every point of the face within two
     // deflections of the triangles, inside the band the samples leave out.
     const double exact = face_area(fm.face), loss = std::abs(fm.area - exact);
-    if (loss > 0.05 * std::abs(exact) + 1e-9 && loss > sliver_area) {
+    if (loss > Settings::mesh_area_loss * std::abs(exact) + Settings::mesh_area_loss_floor && loss > sliver_area) {
       const std::string what =
           "the triangulation of a face covers " + std::to_string(fm.area) + " of its area " + std::to_string(exact);
       if (uncovered)
@@ -168,7 +169,7 @@ std::vector<Triangle> triangulate(const TopoDS_Shape& shape, double deflection, 
     // closed: every triangle side is shared by another triangle
     Eigen::AlignedBox3d box;
     for (const auto& t : out) box.extend(t.a), box.extend(t.b), box.extend(t.c);
-    const double q = 1e-9 * std::max(box.sizes().maxCoeff(), 1e-300);
+    const double q = Settings::mesh_side_resolution * std::max(box.sizes().maxCoeff(), 1e-300);
     auto key = [&](const Eigen::Vector3d& p) {
       return std::array<long long, 3>{std::llround(p.x() / q), std::llround(p.y() / q), std::llround(p.z() / q)};
     };
@@ -220,7 +221,7 @@ class FirstMismatch {
 /// Boxes that hold a face and its triangles with `margin` around them: the face's surface over its
 /// parameter box on 8 x 8 cells, each sampled at 5 x 5 points and widened by the longest step
 /// between neighbouring points (far more than the surface strays between them), and the triangles
-/// in groups of 16.
+/// in groups of Settings::region_triangle_group.
 std::vector<Eigen::AlignedBox3d> region_of(const TopoDS_Face& face, const std::vector<Triangle>& tris, double margin) {
   std::vector<Eigen::AlignedBox3d> out;
   double u0, u1, v0, v1;
@@ -242,9 +243,11 @@ std::vector<Eigen::AlignedBox3d> region_of(const TopoDS_Face& face, const std::v
         }
       out.push_back(Eigen::AlignedBox3d(box.min().array() - (margin + step), box.max().array() + (margin + step)));
     }
-  for (std::size_t first = 0; first < tris.size(); first += 16) {
+  const int group = Settings::region_triangle_group;
+  for (std::size_t first = 0; first < tris.size(); first += group) {
     Eigen::AlignedBox3d box;
-    for (std::size_t k = first; k < std::min(tris.size(), first + 16); ++k) box.extend(tris[k].a), box.extend(tris[k].b), box.extend(tris[k].c);
+    for (std::size_t k = first; k < std::min(tris.size(), first + group); ++k)
+      box.extend(tris[k].a), box.extend(tris[k].b), box.extend(tris[k].c);
     out.push_back(Eigen::AlignedBox3d(box.min().array() - margin, box.max().array() + margin));
   }
   return out;
@@ -349,7 +352,7 @@ std::vector<Probe> pick_probes(const TopoDS_Shape& solid, const std::vector<Face
     const gp_Pnt2d q(uv[0].X() + s * (uv[1].X() - uv[0].X()) + t * (uv[2].X() - uv[0].X()),
                      uv[0].Y() + s * (uv[1].Y() - uv[0].Y()) + t * (uv[2].Y() - uv[0].Y()));
     BRepAdaptor_Surface S(fm.face);
-    BRepLProp_SLProps props(S, q.X(), q.Y(), 1, 1e-9);
+    BRepLProp_SLProps props(S, q.X(), q.Y(), 1, Settings::normal_resolution);
     if (!props.IsNormalDefined()) continue;
     Eigen::Vector3d nn = to_eigen(gp_Vec(props.Normal()));
     if (fm.face.Orientation() == TopAbs_REVERSED) nn = -nn;
@@ -371,7 +374,7 @@ void judge_probes(const TopoDS_Shape& solid, double tol, const std::vector<Probe
   std::atomic<std::size_t> bad{0}, undecided{0};
   std::mutex offset_mutex;
   r.probe_offset_max = delta;
-  const std::size_t batch = 64;
+  const std::size_t batch = Settings::probe_batch;
   std::size_t tried = 0;
   while (tried < probes.size()) {
     const std::size_t start = tried, count = std::min(batch, probes.size() - start);
@@ -383,7 +386,7 @@ void judge_probes(const TopoDS_Shape& solid, double tol, const std::vector<Probe
         const Probe& pr = probes[start + k];
         int mo = -1, mi = -1;
         double off = delta;
-        for (; off <= std::max(delta, deflection) * (1 + 1e-12); off *= 4) {
+        for (; off <= std::max(delta, deflection) * (1 + Settings::probe_offset_rounding); off *= 4) {
           mo = in_set(pr.p + off * pr.n);
           mi = mo < 0 ? -1 : in_set(pr.p - off * pr.n);
           if (mo >= 0 && mi >= 0) break;
@@ -471,7 +474,8 @@ VerdictResult judge_solid(const TopoDS_Shape& solid, const Eigen::AlignedBox3d& 
         divider.Perform();
         if (!divider.Result().IsNull()) meshed = divider.Result();
       }
-      tris = triangulate(meshed, (attempt < 2 ? 1.0 : 0.25) * deflection, &problem, &uncovered);
+      tris = triangulate(meshed, (attempt < 2 ? 1.0 : Settings::verdict_finer_deflection) * deflection, &problem,
+                         &uncovered);
       if (problem.empty() && !uncovered.empty()) {
         problem = uncovered.front().second;
         if (partial_tris.empty()) {
@@ -507,8 +511,9 @@ VerdictResult judge_solid(const TopoDS_Shape& solid, const Eigen::AlignedBox3d& 
   judge_samples(solid, by_mesh ? &mesh : nullptr, partial_avoid, box, member, tol, band, settings, first, r, &exact);
   if (partial) r.classifier += ", and OCCT's solid classifier for the " + std::to_string(exact) + " samples no such ray decides";
   const double delta = settings.probe_offset * tol;
-  judge_probes(solid, tol, pick_probes(meshed, faces, deflection, 10 * delta + deflection, settings), member, delta,
-               deflection, first, r);
+  judge_probes(solid, tol,
+               pick_probes(meshed, faces, deflection, Settings::probe_edge_clearance * delta + deflection, settings),
+               member, delta, deflection, first, r);
   // The symmetric difference: where samples disagree, the band that was not tested and the
   // samples the membership did not decide.
   r.difference_bound =
@@ -531,7 +536,7 @@ double measured_geometric_error(const TopoDS_Shape& shape) {
       const TopoDS_Edge& e = TopoDS::Edge(ex.Current());
       if (BRep_Tool::Degenerated(e)) continue;
       double dev = 0;
-      if (sae.CheckSameParameter(e, face, dev, 23)) worst = std::max(worst, dev);
+      if (sae.CheckSameParameter(e, face, dev, Settings::pcurve_gap_samples)) worst = std::max(worst, dev);
       double f, l;
       const Handle(Geom2d_Curve) pc = BRep_Tool::CurveOnSurface(e, face, f, l);
       const BRepAdaptor_Curve curve(e);

@@ -102,15 +102,115 @@ struct Settings {
   /// OCCT's general section, 0.2 s a pair under a helical joint).
   bool spline_sections = true;
   /// Traced crossings (touching, torus and spline sections): the grid of the contour search over
-  /// the traced face's parameters (per side), how far (x size) a traced point may lie from the
-  /// other surface and still be on the crossing, and within what distance (x size) a side of the
-  /// traced face lies on the other surface (the distance vanishes along it: no crossing is traced).
+  /// the traced face's parameters (per side) and its tracer's flat value (x size), how far (x size)
+  /// a traced point may lie from the other surface and still be on the crossing, and within what
+  /// distance (x size) a side of the traced face lies on the other surface (the distance vanishes
+  /// along it: no crossing is traced).
   static constexpr int traced_section_grid = 60;
+  static constexpr double traced_section_flat = 1e-12;
   static constexpr double traced_section_stray = 1e-6;
   static constexpr double traced_section_side_on = 1e-7;
   /// Profiles that meet at a smaller sine of their angle are left to OCCT's general section (their
   /// crossing is too ill-conditioned to place along the profiles).
   static constexpr double orbit_section_min_sine = 1e-3;
+  /// Candidate faces whose boxes, widened by this many times the boundary's resolution (the points
+  /// it takes as one), meet are tested for a common surface and for crossings.
+  static constexpr int candidate_box_gap = 10;
+  /// How far a section may lie from a face's boundary and still run along it: at least this many
+  /// times the boundary's resolution (fit_error_margin fit errors, when that is more).
+  static constexpr int section_boundary_margin = 100;
+  /// A closed edge of a body's face is its seam along u (v) when its ends' u (v) agree within this
+  /// (x one plus the face's u (v) range).
+  static constexpr double seam_end_resolution = 1e-9;
+  /// Points are projected onto a surface, to test whether an edge lies on it within a distance, to
+  /// this precision (x that distance).
+  static constexpr double on_surface_projection = 0.01;
+  /// A crossing traced where a grazing curve's sweep touches a face splits each face of the pair
+  /// whose surface it lies on within this many tolerances.
+  static constexpr int touching_on_face = 10;
+  /// A piece is classified at its points on a grid of this many cells per side of its parameter
+  /// box; when none decides, at up to this many points stepped in across its edges, in steps (x the
+  /// edge's chord in the parameter plane) from the first down to the second, a third as long each
+  /// time, kept where the piece's classifier (this tolerance, absolute in its parameters) finds
+  /// them inside.
+  static constexpr int classify_grid = 4;
+  static constexpr int classify_edge_samples = 12;
+  static constexpr double edge_sample_first_step = 0.25;
+  static constexpr double edge_sample_min_step = 1e-4;
+  static constexpr double edge_sample_classifier_tolerance = 1e-12;
+  /// Two faces of the solid lie on one surface of revolution when their frames and sizes agree
+  /// within this many times the largest tolerance of its faces (such faces whose angles turn
+  /// opposite ways are not merged).
+  static constexpr int same_domain_tolerances = 10;
+
+  // --- crossings of faces swept along one joint's orbits (orbit_section.cpp)
+  /// A face follows the orbits when some of its points lie this far from the joint's axis and it
+  /// spans this far along the orbits (x the distance within which it follows them); under a helical
+  /// joint, when it spans more than the second (radians of the joint).
+  static constexpr double orbit_patch_extent = 1e3;
+  static constexpr double orbit_patch_min_turn = 1e-6;
+  /// A curve on a face lies on a side of the face's parameter box when its points are within this
+  /// of the side (x one plus the magnitudes of the box's bounds).
+  static constexpr double box_side_resolution = 1e-9;
+  /// Intervals each profile is sampled on (a polyline) to find where profiles cross.
+  static constexpr int orbit_profile_samples = 96;
+  /// A solve for a crossing starts where two sample segments pass within this many times the
+  /// polylines' bound on their distance from the profiles (per profile), plus the second times
+  /// the boundary tolerance.
+  static constexpr int orbit_near_sags = 4;
+  static constexpr int orbit_near_tols = 10;
+  /// Where two profiles come closest: damped Gauss-Newton steps, at most this many; the damping
+  /// (x the largest diagonal entry of J^T J) starts at, and falls no lower than, the second; the
+  /// solve gives up when it rises above the third, and stops at a step below the fourth (x one plus
+  /// the parameter).
+  static constexpr int profile_solve_iterations = 100;
+  static constexpr double profile_solve_damping = 1e-12;
+  static constexpr double profile_solve_max_damping = 1e8;
+  static constexpr double profile_solve_step = 1e-15;
+  /// Sample polylines that pass within this (x one plus the size of the point's profile
+  /// coordinates) cross: when no crossing of the profiles is found there, the pair is left to OCCT's
+  /// general section.
+  static constexpr double polyline_crossing_rounding = 1e-12;
+  /// Two crossings of two profiles closer than this (x each profile's parameter range) are one (a
+  /// crossing found again from another start); where a profile crosses itself, two crossings, or a
+  /// cut and an end or another cut, closer than the second are one.
+  static constexpr double crossing_found_again = 1e-6;
+  static constexpr double self_crossing_apart = 1e-7;
+  /// A crossing along a helix is fitted through its points on this many intervals per quarter turn,
+  /// doubled up to the second while the fit strays.
+  static constexpr int helix_section_samples_first = 8;
+  static constexpr int helix_section_samples_last = 128;
+  /// The pieces of a face cut where its profile crosses itself: a side of a piece shorter than this
+  /// (absolute) is a degenerate edge.
+  static constexpr double profile_piece_degenerate = 1e-7;
+
+  // --- crossings traced as the zero set of a distance (touching_section.cpp)
+  /// Bisections that end a run of traced points where it leaves a face or passes a time where the
+  /// sweep's faces meet; a point within the second of such a time (x one plus the time) lies on it.
+  static constexpr int traced_run_bisections = 50;
+  static constexpr double traced_break_rounding = 1e-12;
+  /// Within this (x the range) of the touching time, the distance divided by the square of the time
+  /// from it is interpolated (rounding would dominate it there).
+  static constexpr double touching_time_band = 1e-3;
+  /// A run of a touching crossing reaching less than this (x size) is a point where the grazing
+  /// curve meets the joint's axis (its orbit is that point, on the copy at every time): no crossing.
+  static constexpr double touching_run_min_reach = 1e-4;
+
+  // --- section curves refitted onto both faces (section_refit.cpp)
+  /// A point on both faces near a section point: Newton steps, at most this many, until it lies on
+  /// both within the second (x tol), the precision also of the projections that measure the
+  /// refitted curve's distance from the surfaces.
+  static constexpr int point_on_both_iterations = 30;
+  static constexpr double section_point_precision = 1e-3;
+  /// An edge is refitted only when its curves on both faces span its 3-D curve's parameter range,
+  /// within this (x one plus the bound).
+  static constexpr double refit_range_resolution = 1e-9;
+  /// The refitted points may lie this many of the edge's tolerances from its curve.
+  static constexpr int refit_stray_tolerances = 10;
+  /// Intervals of the points the curve is refitted through: the first tried, doubled up to the last
+  /// while the fit strays.
+  static constexpr int refit_samples_first = 32;
+  static constexpr int refit_samples_last = 512;
 
   // --- grazing sets followed over a motion's range (grazing_family.hpp)
   /// Events of a grazing set are located by bisection to this fraction of the range.
@@ -145,6 +245,26 @@ struct Settings {
   bool general_motions = false;
   /// How many times a patch that no single fitted B-spline holds is halved (patch_faces).
   static constexpr int patch_face_splits = 4;
+  /// A patch's face on the surface of its form: its sides sampled on this many intervals, each a
+  /// line, circle or ellipse when every sample lies on it within the second (x the side's size, at
+  /// least 1); its error measured on a grid of this many intervals per side.
+  static constexpr int patch_side_samples = 64;
+  static constexpr double patch_side_rounding = 1e-13;
+  static constexpr int patch_error_grid = 16;
+  /// A ruled patch runs straight along a parameter within this (x tol); its two sides are fitted on
+  /// this many intervals, then four and sixteen times as many; its error is measured on a grid of
+  /// this many intervals per side; a side of its face shorter than this (x tol) is degenerate.
+  static constexpr double ruled_straightness = 1e-3;
+  static constexpr int ruled_side_samples = 64;
+  static constexpr int ruled_error_grid = 24;
+  static constexpr double ruled_face_degenerate = 1e-3;
+  /// A patch fitted as a B-spline surface: the grid's intervals per side doubling from the first to
+  /// the last, the fitter's own tolerance at the grid points (x tol), and the least tolerance of its
+  /// face (x tol).
+  static constexpr int patch_fit_grid_first = 16;
+  static constexpr int patch_fit_grid_last = 256;
+  static constexpr double patch_fit_approx = 0.1;
+  static constexpr double patch_face_min_tolerance = 1e-9;
 
   // --- faces swept by a curve under one screw joint (sweep_curve)
   /// Points a curve is sampled at to tell whether the motion slides it along itself, whether it
@@ -187,7 +307,8 @@ struct Settings {
   /// The relative precision of a spherical patch's integrated area (checked against its exact
   /// area).
   static constexpr double sphere_patch_area_precision = 1e-9;
-  /// Points at which an edge's curve on a face is compared with its 3-D curve (tighten_pcurves).
+  /// Points at which an edge's curve on a face is compared with its 3-D curve (tighten_pcurves, and
+  /// the solid's measured geometric error).
   static constexpr int pcurve_gap_samples = 23;
 
   // --- grazing curves of a face of the body at one instant (grazing_curves)
@@ -314,6 +435,9 @@ struct Settings {
   /// smoothly there; the motion is tangent to a face where |n . v| is at most this x |v|.
   static constexpr double smooth_edge_angle = 1e-9;
   static constexpr double tangent_motion = 1e-9;
+  /// A point of a face slower than this under the motion (x size) lies on the axis: it does not
+  /// tell which way the motion meets the face.
+  static constexpr double on_axis_speed = 1e-12;
   /// The tolerance (absolute, in a face's parameters) of the classifiers that tell which of a
   /// face's sampled points lie inside it.
   static constexpr double face_sample_classifier_tolerance = 1e-9;
@@ -340,25 +464,83 @@ struct Settings {
   /// again from every candidate when they are at most this many (the arrangement's time grows
   /// fast with their number: 390 faces take about 20 minutes).
   std::size_t rebuild_candidate_limit = 200;
+  /// A point inside a cell is sought this far (x size) inward from points of its faces, then ten and
+  /// a hundred times closer; in a thin cell, at the middle of a ray's way across it, the ray starting
+  /// this far (x size) off the face and the point classified at this tolerance (x size).
+  static constexpr double cell_interior_offset = 1e-3;
+  static constexpr double thin_cell_ray_start = 1e-7;
+  static constexpr double thin_cell_classifier = 1e-10;
+  /// A cell with no interior point and a volume below this (x size^3) is a sliver of nothing.
+  static constexpr double sliver_cell_volume = 1e-9;
+  /// OCCT's cell builder can build no cell at one fuzzy value and every cell at a neighbouring one:
+  /// when it builds none, the fuzzy value this many times smaller, then larger, is tried.
+  static constexpr double arrangement_fuzzy_factor = 10;
 
-  // --- the verdict: the solid against a membership test that does not use it
-  /// Points sampled uniformly in the box that holds the swept set.
-  std::size_t verdict_samples = 4096;
-  /// Points on the solid's faces, each tested just outside and just inside the boundary.
-  std::size_t verdict_probes = 512;
-  /// How far off the boundary the probes lie (x tol); probes lie at least ten times that from the
-  /// solid's edges.
-  double probe_offset = 4;
-  /// Linear deflection of the triangulation the samples are classified against (x size); samples
-  /// within three deflections plus the tolerance of the triangulated boundary are left out (the
-  /// probes test that band).
-  double verdict_deflection = 2e-3;
+  // --- the trajectory membership test (trajectory.cpp)
   /// The membership by trajectories meets each point's path with the body's faces over pieces of
   /// the path along which its tangent turns by at most this angle (radians; OCCT's curve-face
   /// intersector samples the range it is given and steps over short chords through a face on a
   /// longer one), its turning summed at this many points of the path.
   static constexpr double trajectory_piece_turn = 0.7853981633974483;
   static constexpr int trajectory_turn_samples = 32;
+  /// The reach of the body's centre over the motion is sampled at this many intervals.
+  static constexpr int path_reach_samples = 256;
+  /// A point nearer a revolute joint's axis than this (absolute) does not move: it has no path.
+  static constexpr double path_on_axis = 1e-12;
+  /// A point's helix fitted on its own: on at least this many intervals, at most pi / the second
+  /// (radians of the joint) apart.
+  static constexpr int helix_path_min_samples = 16;
+  static constexpr int helix_path_samples_per_half_turn = 32;
+  /// The motion's inverse poses, fitted once for every path: spans from the first, doubled up to the
+  /// second (the third under a screw, whose paths have a way out: each point's own).
+  static constexpr int path_fit_spans_first = 4;
+  static constexpr int path_fit_spans_max = 1024;
+  static constexpr int screw_path_fit_spans_max = 256;
+  /// Where a circle meets a torus: the quartic is solved when its leading coefficient exceeds the
+  /// first (x its largest coefficient); a root off the unit circle by more than the second (a double
+  /// root is found to about the square root of the machine precision) is a point where the circle
+  /// misses the torus.
+  static constexpr double circle_torus_leading = 1e-9;
+  static constexpr double circle_torus_root_rounding = 1e-6;
+  /// The running cost of each of its two tests (the cheaper goes first) starts from this (seconds).
+  static constexpr double membership_cost_prior = 1e-3;
+
+  // --- the verdict: the solid against a membership test that does not use it
+  /// Points sampled uniformly in the box that holds the swept set.
+  std::size_t verdict_samples = 4096;
+  /// Points on the solid's faces, each tested just outside and just inside the boundary.
+  std::size_t verdict_probes = 512;
+  /// How far off the boundary the probes lie (x tol).
+  double probe_offset = 4;
+  /// Probes lie at least this many probe offsets, plus the deflection, from the solid's edges.
+  static constexpr int probe_edge_clearance = 10;
+  /// Where the membership cannot decide at the probe offset, the offset grows up to the deflection,
+  /// which it may pass by this rounding (relative).
+  static constexpr double probe_offset_rounding = 1e-12;
+  /// Probes are tested in batches of this many (when almost every probe of the first is undecided,
+  /// the rest are not tried).
+  static constexpr std::size_t probe_batch = 64;
+  /// Linear deflection of the triangulation the samples are classified against (x size); samples
+  /// within three deflections plus the tolerance of the triangulated boundary are left out (the
+  /// probes test that band).
+  double verdict_deflection = 2e-3;
+  /// When no mesh at that deflection passes its checks, a finer one at this fraction of it is made.
+  static constexpr double verdict_finer_deflection = 0.25;
+  /// An edge whose polyline within the deflection fails is cut into this many segments (the
+  /// distance of probes from the solid's edges).
+  static constexpr int edge_polyline_segments = 16;
+  /// A face without triangles is a hole in the mesh when its area exceeds this (x the mesh's area)
+  /// and pi deflection^2; a face's triangles cover it when they miss at most this fraction of its
+  /// area plus the second (absolute), or pi deflection^2.
+  static constexpr double mesh_missing_area = 1e-9;
+  static constexpr double mesh_area_loss = 0.05;
+  static constexpr double mesh_area_loss_floor = 1e-9;
+  /// The mesh is closed when every triangle side is shared, vertices matched on a grid of this step
+  /// (x the mesh's size).
+  static constexpr double mesh_side_resolution = 1e-9;
+  /// Triangles are boxed in groups of this many for the regions rays keep off (faces their
+  /// triangles do not cover).
+  static constexpr int region_triangle_group = 16;
   /// Sub-boxes a joint-space search may split for one verdict point (chains); a point it cannot
   /// decide is left out and counted as undecided.
   std::size_t membership_budget = 20000;
@@ -373,6 +555,18 @@ struct Settings {
   double confidence = 0.95;
   /// Seed of every sampler (runs are deterministic).
   std::uint64_t seed = 20261123;
+
+  // --- the solid's checks on its own boundary (solid_checks.cpp)
+  /// The relative precision of OCCT's adaptive volume integral of the solid's faces.
+  static constexpr double brep_volume_precision = 1e-10;
+  /// A face on an extrusion of a spline is integrated on the surface's exact B-spline form over the
+  /// face's parameter box widened by the first (x its range along the curve), and by the second
+  /// (x its range along the extrusion) plus the third (absolute); the form is taken when its points
+  /// agree with the surface's within the fourth (x one plus their distance from the origin).
+  static constexpr double bspline_form_curve_margin = 1e-9;
+  static constexpr double bspline_form_extrusion_margin = 1e-3;
+  static constexpr double bspline_form_extrusion_floor = 1e-9;
+  static constexpr double bspline_form_rounding = 1e-12;
 
   // --- --verify
   /// Monte Carlo samples of the independent volume (one joint; chains take an eighth, at least 20000).
