@@ -278,10 +278,10 @@ struct TrajectoryMembership::Impl {
     return false;
   }
 
-  /// The parameter ranges of path c over each of which its tangent turns by at most
-  /// Settings::trajectory_piece_turn. OCCT's curve-face intersector samples the range it is given:
-  /// over a whole helix of turns it stepped over a short chord through a cylinder face, which it
-  /// found over a part of the path.
+  /// The parameter ranges of path c, each cut once its tangent has turned by more than
+  /// Settings::trajectory_piece_turn (at the path's sampled points). OCCT's curve-face intersector
+  /// samples the range it is given: over a whole helix of turns it stepped over a short chord
+  /// through a cylinder face, which it found over a part of the path.
   static std::vector<std::pair<double, double>> path_pieces(const Geom_Curve& c) {
     const double a = c.FirstParameter(), b = c.LastParameter();
     std::vector<std::pair<double, double>> pieces;

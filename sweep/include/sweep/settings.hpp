@@ -478,9 +478,10 @@ struct Settings {
 
   // --- the trajectory membership test (trajectory.cpp)
   /// The membership by trajectories meets each point's path with the body's faces over pieces of
-  /// the path along which its tangent turns by at most this angle (radians; OCCT's curve-face
-  /// intersector samples the range it is given and steps over short chords through a face on a
-  /// longer one), its turning summed at this many points of the path.
+  /// the path, each cut once its tangent has turned by more than this angle (radians; OCCT's
+  /// curve-face intersector samples the range it is given and steps over short chords through a
+  /// face on a longer one), its turning summed at this many points of the path (a piece may pass
+  /// the angle by the turning between two of them).
   static constexpr double trajectory_piece_turn = 0.7853981633974483;
   static constexpr int trajectory_turn_samples = 32;
   /// The reach of the body's centre over the motion is sampled at this many intervals.
