@@ -1,5 +1,6 @@
-// Membership by trajectories: circles met by tori in closed form, rays deciding inside, and the
-// whole test against a membership computed from a torus's exact distance.
+// Membership by trajectories: rays deciding inside, the whole test against a membership computed
+// from a torus's exact distance, and against the orbit intervals of random parts where paths graze
+// their faces.
 #include <BRepClass3d_SolidClassifier.hxx>
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
@@ -9,7 +10,11 @@
 #include <gp_Elips.hxx>
 #include <BRepPrimAPI_MakeTorus.hxx>
 #include <BRepAlgoAPI_Fuse.hxx>
-#include <ElCLib.hxx>
+#include <BRepAdaptor_Surface.hxx>
+#include <BRepTools.hxx>
+#include <BRepTopAdaptor_FClass2d.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopoDS.hxx>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <random>
@@ -30,52 +35,7 @@ double torus_distance(const gp_Torus& t, const gp_Pnt& p) {
   return std::hypot(rho - t.MajorRadius(), h) - t.MinorRadius();
 }
 
-gp_Dir random_dir(std::mt19937_64& rng) {
-  std::normal_distribution<double> n;
-  return gp_Dir(n(rng), n(rng), n(rng));
-}
-
 }  // namespace
-
-TEST_CASE("Circle and torus: the quartic's angles lie on the torus and account for every crossing") {
-  std::mt19937_64 rng(7);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  int cases = 0, with_roots = 0;
-  for (int it = 0; it < 400; ++it) {
-    const gp_Torus tor(gp_Ax3(gp_Pnt(u(rng), u(rng), u(rng)), random_dir(rng)), 3.0 + u(rng), 1.0 + 0.5 * u(rng));
-    const gp_Dir n = random_dir(rng);
-    const gp_Circ c(gp_Ax2(gp_Pnt(3 * u(rng), 3 * u(rng), 3 * u(rng)), n), 1.0 + 3.0 * (u(rng) + 1.0));
-    bool solved = false;
-    const std::vector<double> w = sweep::occt::circle_torus_angles(c, tor, &solved);
-    REQUIRE(solved);
-    // each angle is a point of the torus
-    for (double a : w) CHECK(std::abs(torus_distance(tor, ElCLib::Value(a, c))) < 1e-9);
-    // the sign changes of the distance along the circle, where no sample comes near a tangency
-    const int m = 4000;
-    std::vector<double> d(m + 2);
-    for (int k = 0; k < m + 2; ++k) d[k] = torus_distance(tor, ElCLib::Value(2 * M_PI * k / m, c));
-    int changes = 0;
-    bool near_tangent = false;
-    for (int k = 0; k < m; ++k) {
-      changes += (d[k] < 0) != (d[k + 1] < 0);
-      // a local extremum close to the torus: a touch the sampling could miss or split
-      const bool extremum = (d[k + 1] - d[k]) * (d[k + 2] - d[k + 1]) <= 0;
-      near_tangent = near_tangent || (extremum && std::abs(d[k + 1]) < 0.05);
-    }
-    if (near_tangent) continue;
-    ++cases;
-    with_roots += !w.empty();
-    CHECK(int(w.size()) == changes);
-  }
-  CHECK(cases > 300);
-  CHECK(with_roots > 100);
-
-  // a circle about the torus's own axis: the quartic degenerates and the caller is told so
-  const gp_Torus tor(gp_Ax3(gp::Origin(), gp::DZ()), 3.0, 1.0);
-  bool solved = true;
-  CHECK(sweep::occt::circle_torus_angles(gp_Circ(gp_Ax2(gp_Pnt(0, 0, 0.5), gp::DZ()), 3.2), tor, &solved).empty());
-  CHECK_FALSE(solved);
-}
 
 TEST_CASE("Trajectory membership: rays agree with OCCT's classifier, and the swept set with the exact distance") {
   // a torus fused with a box through it: torus, plane and box faces
@@ -297,4 +257,106 @@ TEST_CASE("Trajectory membership: a collar screwed 2.3 turns agrees with its orb
   }
   CHECK(inside > 250);
   CHECK(disagree == 0);
+}
+
+namespace {
+
+/// Points q of the faces of `shape` where joint j's orbit through q grazes the face (the velocity
+/// j.velocity(q) is tangent to it), with the face's outward normal there: sign changes of
+/// normal . velocity along lines of constant u and of constant v, bisected.
+std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> grazing_points(const TopoDS_Shape& shape,
+                                                                        const sweep::ScrewJoint& j) {
+  std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> out;
+  for (TopExp_Explorer ex(shape, TopAbs_FACE); ex.More(); ex.Next()) {
+    const TopoDS_Face& f = TopoDS::Face(ex.Current());
+    const BRepAdaptor_Surface surf(f);
+    BRepTopAdaptor_FClass2d fc(f, 1e-9);
+    double u0, u1, v0, v1;
+    BRepTools::UVBounds(f, u0, u1, v0, v1);
+    const double flip = f.Orientation() == TopAbs_REVERSED ? -1.0 : 1.0;
+    auto at = [&](double u, double v, Eigen::Vector3d* q, Eigen::Vector3d* n) {
+      gp_Pnt p;
+      gp_Vec du, dv;
+      surf.D1(u, v, p, du, dv);
+      *q = sweep::occt::to_eigen(p);
+      *n = flip * sweep::occt::to_eigen(du.Crossed(dv)).normalized();
+      return n->dot(j.velocity(*q));
+    };
+    for (int line = 1; line < 8; ++line)
+      for (const bool along_v : {true, false}) {
+        const int m = 200;
+        auto uv = [&](double s) {
+          const double fixed = line / 8.0;
+          return along_v ? gp_Pnt2d(u0 + (u1 - u0) * fixed, v0 + (v1 - v0) * s)
+                         : gp_Pnt2d(u0 + (u1 - u0) * s, v0 + (v1 - v0) * fixed);
+        };
+        Eigen::Vector3d q, n;
+        double before = at(uv(0).X(), uv(0).Y(), &q, &n);
+        for (int k = 1; k <= m; ++k) {
+          double s0 = double(k - 1) / m, s1 = double(k) / m;
+          const double now = at(uv(s1).X(), uv(s1).Y(), &q, &n);
+          if ((before < 0) == (now < 0) || fc.Perform(uv(s0)) != TopAbs_IN || fc.Perform(uv(s1)) != TopAbs_IN) {
+            before = now;
+            continue;
+          }
+          for (int it = 0; it < 60; ++it) {
+            const double sm = 0.5 * (s0 + s1);
+            ((at(uv(sm).X(), uv(sm).Y(), &q, &n) < 0) == (before < 0) ? s0 : s1) = sm;
+          }
+          at(uv(s0).X(), uv(s0).Y(), &q, &n);
+          out.push_back({q, n});
+          before = now;
+        }
+      }
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("Trajectory membership: paths that dip 1e-5 and 1e-7 deep into random parts' faces where they graze them agree with their orbit intervals") {
+  // x = exp(xi t) (q - e n) for a point q of a face where the joint's orbit grazes it: the path
+  // back of x passes e inside the face, along it, for a stretch of about the square root of e. Kept
+  // where that dip is the path's only stretch in the part: a sampled curve-face intersection that
+  // steps over the dip takes x to be outside the swept set
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int all_dips = 0, all_outside = 0;
+  for (const int index : {0, 1, 2, 3, 4, 10, 11, 12, 13, 14}) {
+    const sweep::testing::RandomPart p = sweep::testing::random_part_case(43, index);
+    const sweep::testing::JointSweep s = sweep::testing::part_joint_sweep(p);
+    REQUIRE(s.j.lo == 0.0);
+    const sweep::ScrewStage motion(s.j);
+    sweep::occt::TrajectoryMembership member(p.shape, true, motion, 1e-9);
+    int dips = 0, outside = 0, disagree = 0;
+    for (const auto& [q, n] : grazing_points(p.shape, s.j))
+      for (const double e : {1e-5, 1e-7}) {
+        const Eigen::Vector3d y = q - e * n;
+        for (int trial = 0; trial < 4; ++trial) {
+          const double t = s.T * u(rng);
+          // the orbit of y over [t - T, t] is the path of x run forwards
+          const sweep::Intervals in_part = s.body->on_curve(sweep::orbit_of(s.j, y), t - s.T, t);
+          if (in_part.size() != 1 || in_part[0].first > 0 || in_part[0].second < 0 ||
+              in_part[0].second - in_part[0].first > 0.05)
+            continue;
+          const Eigen::Vector3d x = s.j.transform(t) * y;
+          REQUIRE(sweep::in_joint_sweep(*s.body, s.j, s.T, x));
+          disagree += !member(x);
+          ++dips;
+          // just outside the face, the path keeps out of the part
+          const Eigen::Vector3d z = s.j.transform(t) * Eigen::Vector3d(q + e * n);
+          if (!s.body->on_curve(sweep::orbit_of(s.j, Eigen::Vector3d(q + e * n)), t - s.T, t).empty()) continue;
+          REQUIRE_FALSE(sweep::in_joint_sweep(*s.body, s.j, s.T, z));
+          disagree += member(z);
+          ++outside;
+          break;
+        }
+      }
+    CAPTURE(p.name, dips, outside, disagree);
+    CHECK(disagree == 0);
+    all_dips += dips;
+    all_outside += outside;
+  }
+  CHECK(all_dips >= 100);
+  CHECK(all_outside >= 50);
 }

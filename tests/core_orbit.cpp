@@ -266,3 +266,94 @@ TEST_CASE("Mesh index: rays that avoid a region whose triangles are wrong") {
     }
   CHECK(mesh.inside_avoiding(centre, around) == -1);
 }
+
+namespace {
+
+std::vector<std::pair<std::string, OrbitSurface>> orbit_surfaces() {
+  using K = OrbitSurface::Kind;
+  Eigen::Isometry3d other = tilted_frame().inverse();
+  other.translation() += Vector3d(0.1, 0.4, -0.2);
+  std::vector<std::pair<std::string, OrbitSurface>> out;
+  for (const auto& [name, kind] : std::vector<std::pair<std::string, K>>{
+           {"plane", K::Plane}, {"cylinder", K::Cylinder}, {"cone", K::Cone}, {"sphere", K::Sphere}, {"torus", K::Torus}})
+    for (const auto& frame : {tilted_frame(), other}) {
+      OrbitSurface s;
+      s.kind = kind;
+      s.frame = frame;
+      s.radius = kind == K::Torus ? 0.9 : kind == K::Cone ? 0.3 : 0.7;
+      s.slope = 0.5;
+      s.minor = 0.3;
+      out.push_back({name, s});
+    }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("Orbit surfaces: crossings of random orbits agree with the sign of the surface's function between samples") {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-1.5, 1.5);
+  const std::vector<ScrewJoint> joints{joint(JointType::Revolute, Vector3d(0.1, 0.2, 0), Vector3d(0.3, 1, 0.2)),
+                                       joint(JointType::Helical, Vector3d(0, -0.3, 0), Vector3d(1, 0.2, 0.4), 0.7),
+                                       joint(JointType::Prismatic, Vector3d::Zero(), Vector3d(0.4, 1, -0.7))};
+  const Eigen::AlignedBox3d everywhere(Vector3d::Constant(-1e3), Vector3d::Constant(1e3));
+  for (const auto& [name, s] : orbit_surfaces()) {
+    int found = 0, brackets = 0;
+    for (const auto& j : joints)
+      for (int k = 0; k < 40; ++k) {
+        const OrbitCurve o = orbit_of(j, Vector3d(u(rng), u(rng), u(rng)));
+        const std::vector<double> roots = surface_crossings(s, o, -4, 4, everywhere);
+        REQUIRE(std::is_sorted(roots.begin(), roots.end()));
+        found += int(roots.size());
+        for (double r : roots) {
+          CAPTURE(name, to_string(j.type), r);
+          REQUIRE(r >= -4);
+          REQUIRE(r <= 4);
+          // f changes sign across the root
+          const double before = s.value(o.at(r - 1e-7)), after = s.value(o.at(r + 1e-7));
+          CHECK((before < 0) != (after < 0));
+        }
+        // between samples, an odd number of roots where f's signs differ, an even number elsewhere
+        const int n = 2000;
+        int wrong = 0;
+        double first_wrong = 0;
+        for (int m = 0; m < n; ++m) {
+          const double t0 = -4 + 8.0 * m / n, t1 = -4 + 8.0 * (m + 1) / n;
+          const double f0 = s.value(o.at(t0)), f1 = s.value(o.at(t1));
+          if (std::abs(f0) < 1e-9 || std::abs(f1) < 1e-9) continue;  // a root at a sample
+          const auto in = std::count_if(roots.begin(), roots.end(), [&](double r) { return r > t0 && r < t1; });
+          if ((in % 2 == 1) != ((f0 < 0) != (f1 < 0)) && wrong++ == 0) first_wrong = t0;
+          brackets += (f0 < 0) != (f1 < 0);
+        }
+        CAPTURE(name, to_string(j.type), first_wrong);
+        CHECK(wrong == 0);
+      }
+    CAPTURE(name);
+    CHECK(brackets > 15);  // the orbits did cross the surface
+    CHECK(found >= brackets);
+  }
+}
+
+TEST_CASE("Orbit surfaces: a circle that dips 1e-8 deep into a sphere crosses it twice, and a region away from the dip is not searched") {
+  // the circle of radius 1 about the z axis, and the unit sphere about (2 - delta, 0, 0): inside it
+  // where cos t > 1 - delta / 2
+  const double delta = 1e-8;
+  const OrbitCurve circle = orbit_of(joint(JointType::Revolute, Vector3d::Zero(), Vector3d::UnitZ()), Vector3d::UnitX());
+  OrbitSurface sphere;
+  sphere.kind = OrbitSurface::Kind::Sphere;
+  sphere.frame.translation() = Vector3d(2 - delta, 0, 0);
+  sphere.radius = 1;
+  const Eigen::AlignedBox3d everywhere(Vector3d::Constant(-10), Vector3d::Constant(10));
+  const double t = std::acos(1 - delta / 2);
+  const std::vector<double> roots = surface_crossings(sphere, circle, -3, 3.5, everywhere);
+  REQUIRE(roots.size() == 2);
+  CHECK(roots[0] == Approx(-t).epsilon(1e-6));
+  CHECK(roots[1] == Approx(t).epsilon(1e-6));
+  // two turns later, the same crossings
+  const std::vector<double> later = surface_crossings(sphere, circle, 10, 14, everywhere);
+  REQUIRE(later.size() == 2);
+  CHECK(later[0] == Approx(4 * M_PI - t).epsilon(1e-9));
+  CHECK(later[1] == Approx(4 * M_PI + t).epsilon(1e-9));
+  const Eigen::AlignedBox3d far_side(Vector3d(-1.5, -1.5, -1), Vector3d(-0.5, 1.5, 1));
+  CHECK(surface_crossings(sphere, circle, -3, 3.5, far_side).empty());
+}

@@ -43,9 +43,13 @@ struct Span {
 };
 using Spans = std::vector<Span>;
 
-/// Where g < 0 on [a, b], shifted by `shift`; roots are isolated by g's value and slope at cell
-/// centres against the bound on g'' (a cell is skipped only when g cannot vanish in it), then
-/// refined to rounding. Ends at roots get `id`, ends at a or b get -1.
+/// The roots of g in [a, b] at which it changes sign, sorted: isolated by g's value and slope at
+/// cell centres against the bound on g'' (a cell is skipped only when g cannot vanish in it), then
+/// refined to rounding. A root at which g touches zero without changing sign is not among them.
+std::vector<double> sign_changes(const TrigPoly& g, double a, double b);
+
+/// Where g < 0 on [a, b], shifted by `shift`, cut at g's sign changes. Ends at roots get `id`, ends
+/// at a or b get -1.
 Spans negative_set(const TrigPoly& g, double a, double b, double shift, int id);
 
 Spans unite(const Spans& a, const Spans& b);

@@ -171,7 +171,7 @@ double refine_root(const TrigPoly& g, double a, double b, double ga, double gb) 
 
 }  // namespace
 
-Spans negative_set(const TrigPoly& g, double a, double b, double shift, int id) {
+std::vector<double> sign_changes(const TrigPoly& g, double a, double b) {
   const double w = std::max(std::abs(a), std::abs(b));
   const double K = g.second_derivative_bound(w);
   // values below this are rounding: a cell that cannot leave it is decided by its centre's sign
@@ -198,6 +198,11 @@ Spans negative_set(const TrigPoly& g, double a, double b, double shift, int id) 
     stack.push_back({x0, m});
   }
   std::sort(roots.begin(), roots.end());
+  return roots;
+}
+
+Spans negative_set(const TrigPoly& g, double a, double b, double shift, int id) {
+  const std::vector<double> roots = sign_changes(g, a, b);
   std::vector<double> cuts{a};
   for (double r : roots)
     if (r > cuts.back() && r < b) cuts.push_back(r);

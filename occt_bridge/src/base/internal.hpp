@@ -267,9 +267,11 @@ TopoDS_Shape solid_from_boundary_faces(const std::vector<TopoDS_Face>& split, co
 
 /// Point membership in the sweep of `body` under a one-parameter motion M (M(t) body is the body at
 /// t): x is swept when its path back through the motion, y(t) = M(t)^-1 x for t in [lo, hi], meets
-/// the body's boundary, or (for a solid body) starts inside it. The path is exact when the motion
-/// is one slide or turn (a segment, a circle), and otherwise (a helix too) the image of x under the
-/// motion's inverse poses, fitted once within `tol` over the region the body sweeps.
+/// the body's boundary, or (for a solid body) starts inside it. Under a screw, faces on planes,
+/// quadrics and tori are met at the certified roots of their implicit functions along the path (an
+/// orbit of the screw); other faces by OCCT's intersector, along a path that is exact when the
+/// motion is one slide or turn (a segment, a circle), and otherwise (a helix too) the image of x
+/// under the motion's inverse poses, fitted once within `tol` over the region the body sweeps.
 /// Keeps OCCT state: one per thread. The motion must outlive it.
 class TrajectoryMembership {
  public:
@@ -286,11 +288,6 @@ class TrajectoryMembership {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
-
-/// The angles w in [0, 2 pi), ascending, at which the circle c (ElCLib's parametrisation) meets
-/// the whole torus: the roots of a quartic. *solved is false, and nothing is returned, when the
-/// quartic's leading coefficient vanishes (as for a circle about the torus's own axis).
-std::vector<double> circle_torus_angles(const gp_Circ& c, const gp_Torus& tor, bool* solved);
 
 /// Reads a STEP or BREP file into a shape. @throws InputError at `pointer` when unreadable.
 TopoDS_Shape read_shape_file(const std::string& path, const std::string& pointer);

@@ -2,6 +2,7 @@
 #include "verdict/solid_rays.hpp"
 
 #include <BRepBndLib.hxx>
+#include <ElSLib.hxx>
 #include <Precision.hxx>
 #include <TopExp_Explorer.hxx>
 #include <TopoDS.hxx>
@@ -18,7 +19,7 @@ std::vector<FaceHit> face_hits(const TopoDS_Shape& shape, double tol) {
     const TopoDS_Face& f = TopoDS::Face(ex.Current());
     const GeomAbs_SurfaceType type = BRepAdaptor_Surface(f, false).GetType();
     const bool analytic = type == GeomAbs_Plane || type == GeomAbs_Cylinder || type == GeomAbs_Cone ||
-                          type == GeomAbs_Sphere;
+                          type == GeomAbs_Sphere || type == GeomAbs_Torus;
     faces.push_back({analytic ? 0 : 1, f});
   }
   std::stable_sort(faces.begin(), faces.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
@@ -31,13 +32,79 @@ std::vector<FaceHit> face_hits(const TopoDS_Shape& shape, double tol) {
     // would take points off the face for points on it)
     h.inter = std::make_unique<IntCurvesFace_Intersector>(f.second, tol, true, false);
     h.surface = std::make_unique<BRepAdaptor_Surface>(f.second);
-    if (h.surface->GetType() == GeomAbs_Torus) {
-      h.torus = std::make_unique<gp_Torus>(h.surface->Torus());
-      h.fc = std::make_unique<BRepTopAdaptor_FClass2d>(f.second, tol);
-    }
+    h.implicit = implicit_surface(*h.surface);
+    if (h.implicit) h.fc = std::make_unique<BRepTopAdaptor_FClass2d>(f.second, tol);
     out.push_back(std::move(h));
   }
   return out;
+}
+
+namespace {
+
+/// The frame on a surface's axis: origin at its location, local z along its direction.
+Eigen::Isometry3d axis_frame(const gp_Ax3& ax) {
+  const Eigen::Vector3d z = to_eigen(gp_Vec(ax.Direction())).normalized();
+  const Eigen::Vector3d x = z.unitOrthogonal();
+  Eigen::Isometry3d F = Eigen::Isometry3d::Identity();
+  F.linear().col(0) = x;
+  F.linear().col(1) = z.cross(x);
+  F.linear().col(2) = z;
+  F.translation() = to_eigen(ax.Location());
+  return F;
+}
+
+}  // namespace
+
+std::optional<OrbitSurface> implicit_surface(const BRepAdaptor_Surface& s) {
+  using K = OrbitSurface::Kind;
+  OrbitSurface o;
+  switch (s.GetType()) {
+    case GeomAbs_Plane:
+      o.kind = K::Plane;
+      o.frame = axis_frame(s.Plane().Position());
+      return o;
+    case GeomAbs_Cylinder:
+      o.kind = K::Cylinder;
+      o.frame = axis_frame(s.Cylinder().Position());
+      o.radius = s.Cylinder().Radius();
+      return o;
+    case GeomAbs_Cone:
+      // OCCT's cone: radius RefRadius + v sin(a) at height v cos(a) along its axis
+      o.kind = K::Cone;
+      o.frame = axis_frame(s.Cone().Position());
+      o.radius = s.Cone().RefRadius();
+      o.slope = std::tan(s.Cone().SemiAngle());
+      return o;
+    case GeomAbs_Sphere:
+      o.kind = K::Sphere;
+      o.frame = axis_frame(s.Sphere().Position());
+      o.radius = s.Sphere().Radius();
+      return o;
+    case GeomAbs_Torus:
+      o.kind = K::Torus;
+      o.frame = axis_frame(s.Torus().Position());
+      o.radius = s.Torus().MajorRadius();
+      o.minor = s.Torus().MinorRadius();
+      return o;
+    default:
+      return std::nullopt;
+  }
+}
+
+std::optional<bool> on_face(const FaceHit& h, const Eigen::Vector3d& p, double tol) {
+  const gp_Pnt P = to_pnt(p);
+  double u = 0, v = 0;
+  switch (h.surface->GetType()) {
+    case GeomAbs_Plane: ElSLib::Parameters(h.surface->Plane(), P, u, v); break;
+    case GeomAbs_Cylinder: ElSLib::Parameters(h.surface->Cylinder(), P, u, v); break;
+    case GeomAbs_Cone: ElSLib::Parameters(h.surface->Cone(), P, u, v); break;
+    case GeomAbs_Sphere: ElSLib::Parameters(h.surface->Sphere(), P, u, v); break;
+    case GeomAbs_Torus: ElSLib::Parameters(h.surface->Torus(), P, u, v); break;
+    default: return std::nullopt;
+  }
+  if (h.surface->Value(u, v).Distance(P) > tol) return std::nullopt;
+  const TopAbs_State st = h.fc->Perform(gp_Pnt2d(u, v));
+  return st == TopAbs_IN || st == TopAbs_ON;
 }
 
 /// The crossings of a half-line from x with the faces, counted, and the first one's transition

@@ -3,8 +3,6 @@
 #include <BRepTopAdaptor_FClass2d.hxx>
 #include <Bnd_Box.hxx>
 #include <BndLib_Add3dCurve.hxx>
-#include <ElCLib.hxx>
-#include <ElSLib.hxx>
 #include <GeomAPI_PointsToBSpline.hxx>
 #include <GeomAdaptor_Curve.hxx>
 #include <Geom_BSplineCurve.hxx>
@@ -16,12 +14,11 @@
 #include <IntCurvesFace_Intersector.hxx>
 #include <TColgp_Array1OfPnt.hxx>
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
-#include <complex>
+#include <optional>
 
 #include "base/internal.hpp"
 #include "varieties/tube_fit.hpp"
@@ -71,6 +68,17 @@ class BackwardPaths {
     if (screw_ && !moved_start_) return x;  // (a screw's start is the body's frame)
     return m_.body_point(m_.lo(), x);
   }
+
+  /// Under a screw, the path of x as an orbit curve over [0, orbit_end()]: the screw's orbit of x
+  /// run backwards, carried back by the start's inverse.
+  std::optional<OrbitCurve> orbit(const Eigen::Vector3d& x) const {
+    if (!screw_) return std::nullopt;
+    OrbitCurve o = orbit_of(screw_->joint, x);
+    o.b = -o.b;  // a cos(-t) + b sin(-t) + d (-t)
+    o.d = -o.d;
+    return moved_start_ ? o.mapped(screw_->start.inverse()) : o;
+  }
+  double orbit_end() const { return screw_ ? screw_->joint.hi : 0.0; }
 
   /// The path of x (null when x does not move: a point on a revolute joint's axis).
   Handle(Geom_Curve) operator()(const Eigen::Vector3d& x) {
@@ -159,66 +167,6 @@ class BackwardPaths {
 
 }  // namespace
 
-std::vector<double> circle_torus_angles(const gp_Circ& c, const gp_Torus& tor, bool* solved) {
-  using C = std::complex<double>;
-  using Trig = std::array<C, 5>;  // coefficients of exp(i k w), k = -2..2
-  const gp_Ax3& ax = tor.Position();
-  const Eigen::Vector3d O = to_eigen(ax.Location()), Z = to_eigen(gp_Vec(ax.Direction()));
-  const Eigen::Vector3d Cc = to_eigen(c.Location()), Xc = to_eigen(gp_Vec(c.XAxis().Direction())),
-                        Yc = to_eigen(gp_Vec(c.YAxis().Direction()));
-  const double rho = c.Radius(), R = tor.MajorRadius(), r = tor.MinorRadius();
-  const Eigen::Vector3d d0 = Cc - O;
-  // g0 + g1 cos w + g2 sin w
-  auto trig = [](double g0, double g1, double g2) {
-    Trig t{};
-    t[2] = g0;
-    t[3] = C(g1, -g2) / 2.0;
-    t[1] = std::conj(t[3]);
-    return t;
-  };
-  auto mul = [](const Trig& a, const Trig& b) {  // both of degree 1 at most
-    Trig t{};
-    for (int i = 1; i <= 3; ++i)
-      for (int k = 1; k <= 3; ++k) t[i + k - 2] += a[i] * b[k];
-    return t;
-  };
-  // |d|^2 and d . z along the circle, d = P(w) - O
-  const Trig q = trig(d0.squaredNorm() + rho * rho, 2 * rho * d0.dot(Xc), 2 * rho * d0.dot(Yc));
-  const Trig a = trig(d0.dot(Z), rho * Xc.dot(Z), rho * Yc.dot(Z));
-  Trig sq = q;
-  sq[2] += R * R - r * r;
-  const Trig s2 = mul(sq, sq), a2 = mul(a, a);
-  Trig F{};
-  double scale = 0;
-  for (int k = 0; k < 5; ++k) {
-    F[k] = s2[k] - 4 * R * R * q[k] + 4 * R * R * a2[k];
-    scale = std::max(scale, std::abs(F[k]));
-  }
-  std::vector<double> angles;
-  *solved = std::abs(F[4]) > Settings::circle_torus_leading * scale;
-  if (!*solved) return angles;
-  // z^2 F = sum F[m] z^m: the roots of this quartic are its companion matrix's eigenvalues
-  Eigen::Matrix4cd comp = Eigen::Matrix4cd::Zero();
-  for (int m = 0; m < 4; ++m) comp(m, 3) = -F[m] / F[4];
-  for (int m = 1; m < 4; ++m) comp(m, m - 1) = 1.0;
-  const Eigen::ComplexEigenSolver<Eigen::Matrix4cd> es(comp, false);
-  if (es.info() != Eigen::Success) {
-    *solved = false;
-    return angles;
-  }
-  for (int k = 0; k < 4; ++k) {
-    const C z = es.eigenvalues()(k);
-    // a root off the unit circle by more than rounding (a double root is found to about the
-    // square root of the machine precision) is a point where the circle misses the torus
-    if (std::abs(std::abs(z) - 1.0) > Settings::circle_torus_root_rounding) continue;
-    double w = std::arg(z);
-    if (w < 0) w += 2 * M_PI;
-    angles.push_back(w);
-  }
-  std::sort(angles.begin(), angles.end());
-  return angles;
-}
-
 /// Membership by the trajectory: x is swept when y(0) is in the body, or y(t) meets its boundary.
 /// An intersector per face is set up once for all points: it meets the trajectories, and the
 /// rays that decide whether y(0) is in the body (OCCT's solid classifier decides where a ray
@@ -263,21 +211,6 @@ struct TrajectoryMembership::Impl {
     return classify_.record(t0, cls_.State() == TopAbs_IN);
   }
 
-  /// Whether the trajectory circle c, over [0, T], meets the torus face classified by fc (see
-  /// circle_torus_angles for *solved).
-  static bool circle_meets_face(const gp_Circ& c, double T, const gp_Torus& tor, BRepTopAdaptor_FClass2d& fc,
-                                bool* solved) {
-    for (double w : circle_torus_angles(c, tor, solved)) {
-      if (w > T + Settings::angle_resolution && w < 2 * M_PI - Settings::angle_resolution) continue;
-      if (w > T) w = 0.0;
-      double u, v;
-      ElSLib::Parameters(tor, ElCLib::Value(w, c), u, v);
-      const TopAbs_State st = fc.Perform(gp_Pnt2d(u, v));
-      if (st == TopAbs_IN || st == TopAbs_ON) return true;
-    }
-    return false;
-  }
-
   /// The parameter ranges of path c, each cut once its tangent has turned by more than
   /// Settings::trajectory_piece_turn (at the path's sampled points). OCCT's curve-face intersector
   /// samples the range it is given: over a whole helix of turns it stepped over a short chord
@@ -306,34 +239,62 @@ struct TrajectoryMembership::Impl {
     return pieces;
   }
 
+  /// Whether the orbit path o of a screw meets face h (its implicit form set): at a root of the
+  /// implicit function along o that lies on the face. Unknown when a root's point has no clear
+  /// parameters on the surface.
+  std::optional<bool> orbit_meets_face(const FaceHit& h, const OrbitCurve& o) const {
+    double x0, y0, z0, x1, y1, z1;
+    h.box.Get(x0, y0, z0, x1, y1, z1);
+    const Eigen::AlignedBox3d region(Eigen::Vector3d(x0, y0, z0), Eigen::Vector3d(x1, y1, z1));
+    for (double t : surface_crossings(*h.implicit, o, 0.0, paths_.orbit_end(), region)) {
+      const std::optional<bool> on = on_face(h, o.at(t), tol_);
+      if (!on || *on) return on;
+    }
+    return false;
+  }
+
+  /// Whether OCCT's intersector finds a point of face h on path c over one of its pieces (each
+  /// with its box).
+  static bool curve_meets_face(FaceHit& h, const Handle(Geom_Curve)& c,
+                               const std::vector<std::pair<double, double>>& pieces, const std::vector<Bnd_Box>& boxes) {
+    for (std::size_t i = 0; i < pieces.size(); ++i) {
+      if (h.box.IsOut(boxes[i])) continue;
+      Handle(GeomAdaptor_Curve) curve = new GeomAdaptor_Curve(c, pieces[i].first, pieces[i].second);
+      h.inter->Perform(curve, pieces[i].first, pieces[i].second);
+      if (h.inter->IsDone() && h.inter->NbPnt() > 0) return true;
+    }
+    return false;
+  }
+
+  /// Whether the path of x meets the body's boundary. Under a screw, faces on planes, quadrics and
+  /// tori are met by the roots along the path's orbit; other faces by OCCT's intersector.
   bool meets_boundary(const Eigen::Vector3d& x) {
     const auto t0 = Clock::now();
-    Handle(Geom_Curve) c = paths_(x);
-    if (c.IsNull()) return intersect_.record(t0, false);
-    Handle(Geom_Circle) circle;
-    if (auto tc = Handle(Geom_TrimmedCurve)::DownCast(c)) circle = Handle(Geom_Circle)::DownCast(tc->BasisCurve());
-    const double T = c->LastParameter();
-    for (const auto& [from, to] : path_pieces(*c)) {
-      Handle(GeomAdaptor_Curve) curve = new GeomAdaptor_Curve(c, from, to);
-      Bnd_Box box;
-      BndLib_Add3dCurve::Add(*curve, 0.0, box);
-      for (std::size_t k = 0; k < inter_.size(); ++k) {
-        if (inter_[k].box.IsOut(box)) continue;
-        if (circle && inter_[k].torus) {
-          bool solved = false;
-          const bool hit = circle_meets_face(circle->Circ(), T, *inter_[k].torus, *inter_[k].fc, &solved);
-          if (solved) {
-            if (!hit) continue;
-            if (k > 0) std::rotate(inter_.begin(), inter_.begin() + k, inter_.begin() + k + 1);
-            return intersect_.record(t0, true);
+    const std::optional<OrbitCurve> orbit = paths_.orbit(x);
+    if (orbit && orbit->a.isZero(0.0) && orbit->b.isZero(0.0) && orbit->d.isZero(0.0))
+      return intersect_.record(t0, false);  // a point on a revolute joint's axis does not move
+    Handle(Geom_Curve) c;  // the path as an OCCT curve, made when a face needs it
+    std::vector<std::pair<double, double>> pieces;
+    std::vector<Bnd_Box> boxes;
+    for (std::size_t k = 0; k < inter_.size(); ++k) {
+      std::optional<bool> hit;
+      if (orbit && inter_[k].implicit) hit = orbit_meets_face(inter_[k], *orbit);
+      if (!hit) {
+        if (c.IsNull()) {
+          c = paths_(x);
+          if (c.IsNull()) return intersect_.record(t0, false);
+          pieces = path_pieces(*c);
+          for (const auto& [from, to] : pieces) {
+            boxes.emplace_back();
+            BndLib_Add3dCurve::Add(GeomAdaptor_Curve(c, from, to), 0.0, boxes.back());
           }
         }
-        inter_[k].inter->Perform(curve, from, to);
-        if (!inter_[k].inter->IsDone() || inter_[k].inter->NbPnt() == 0) continue;
-        // the face met goes first next time: neighbouring points tend to meet the same face
-        if (k > 0) std::rotate(inter_.begin(), inter_.begin() + k, inter_.begin() + k + 1);
-        return intersect_.record(t0, true);
+        hit = curve_meets_face(inter_[k], c, pieces, boxes);
       }
+      if (!*hit) continue;
+      // the face met goes first next time: neighbouring points tend to meet the same face
+      if (k > 0) std::rotate(inter_.begin(), inter_.begin() + k, inter_.begin() + k + 1);
+      return intersect_.record(t0, true);
     }
     return intersect_.record(t0, false);
   }

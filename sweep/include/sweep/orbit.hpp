@@ -76,6 +76,32 @@ OrbitSolidPtr orbit_intersection(std::vector<OrbitSolidPtr> parts);
 OrbitSolidPtr orbit_difference(OrbitSolidPtr a, OrbitSolidPtr b);
 OrbitSolidPtr orbit_placed(OrbitSolidPtr s, const Eigen::Isometry3d& placement);
 
+/// A surface f(p) = 0 whose f is a polynomial of degree at most four in the coordinates of `frame`
+/// (a rigid map from local to given coordinates), so that along an orbit f is a polynomial in t,
+/// cos t and sin t: the surfaces of planar and quadric B-rep faces, and tori.
+struct OrbitSurface {
+  enum class Kind {
+    Plane,     ///< local z = 0
+    Cylinder,  ///< about the local z axis, of `radius`
+    Cone,      ///< about the local z axis, of radius `radius` + `slope` z (both nappes)
+    Sphere,    ///< about the local origin, of `radius`
+    Torus,     ///< about the local z axis: its centre circle of `radius` in z = 0, its tube of `minor`
+  };
+  Kind kind = Kind::Plane;
+  Eigen::Isometry3d frame = Eigen::Isometry3d::Identity();
+  double radius = 0, slope = 0, minor = 0;
+  /// f at p (given coordinates): negative inside a closed surface, below a plane.
+  double value(const Eigen::Vector3d& p) const;
+};
+
+/// The parameters t in [lo, hi] at which curve o crosses surface s (f changes sign), sorted. The
+/// roots are isolated with a certified bound and refined to rounding, so a crossing is found
+/// however short the stretch of the curve beyond the surface; a point where the curve only touches
+/// the surface is not a crossing. Stretches of the curve that keep out of `region` (given
+/// coordinates) are not searched.
+std::vector<double> surface_crossings(const OrbitSurface& s, const OrbitCurve& o, double lo, double hi,
+                                      const Eigen::AlignedBox3d& region);
+
 /// The sweep of `body` (in its position at t = 0) by joint j over t in [0, T] (a revolute T is taken
 /// modulo nothing: T >= 2 pi covers whole circles). True when some t puts exp(-xi t) x in the body.
 bool in_joint_sweep(const OrbitSolid& body, const ScrewJoint& j, double T, const Eigen::Vector3d& x);

@@ -497,12 +497,6 @@ struct Settings {
   static constexpr int path_fit_spans_first = 4;
   static constexpr int path_fit_spans_max = 1024;
   static constexpr int screw_path_fit_spans_max = 256;
-  /// Where a circle meets a torus: the quartic is solved when its leading coefficient exceeds the
-  /// first (x its largest coefficient); a root off the unit circle by more than the second (a double
-  /// root is found to about the square root of the machine precision) is a point where the circle
-  /// misses the torus.
-  static constexpr double circle_torus_leading = 1e-9;
-  static constexpr double circle_torus_root_rounding = 1e-6;
   /// The running cost of each of its two tests (the cheaper goes first) starts from this (seconds).
   static constexpr double membership_cost_prior = 1e-3;
 
