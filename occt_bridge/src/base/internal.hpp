@@ -24,6 +24,7 @@
 #include "sweep/entity.hpp"
 #include "sweep/error.hpp"
 #include "sweep/motion.hpp"
+#include "sweep/orbit.hpp"
 #include "sweep/spec.hpp"
 #include "sweep/stage_motion.hpp"
 
@@ -288,6 +289,14 @@ class TrajectoryMembership {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+/// The solid `body` as an orbit solid (sweep/orbit.hpp): its faces' crossings with an orbit found
+/// as roots of their surfaces' implicit functions and classified in the faces' domains, the pieces
+/// between them by rays (OCCT's classifier where no ray decides). Nothing of a sweep enters it: the
+/// reference volume of one-joint sweeps of parts read from STEP. Keeps OCCT state: one per thread.
+/// @throws InputError when a face lies on a surface other than a plane, cylinder, cone, sphere or
+/// torus (its index and kind named).
+OrbitSolidPtr brep_orbit_solid(const TopoDS_Shape& body, double tol);
 
 /// Reads a STEP or BREP file into a shape. @throws InputError at `pointer` when unreadable.
 TopoDS_Shape read_shape_file(const std::string& path, const std::string& pointer);

@@ -11,6 +11,7 @@
 /// t, cos t and sin t along the orbit, whose roots are isolated with a certified bound.
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -101,6 +102,22 @@ struct OrbitSurface {
 /// coordinates) are not searched.
 std::vector<double> surface_crossings(const OrbitSurface& s, const OrbitCurve& o, double lo, double hi,
                                       const Eigen::AlignedBox3d& region);
+
+/// A face of a solid whose faces lie on orbit surfaces: its surface, a box that holds it, and
+/// whether a point of the surface lies on the face (its parameter domain: the caller's to give).
+struct OrbitFace {
+  OrbitSurface surface;
+  Eigen::AlignedBox3d box;
+  std::function<bool(const Eigen::Vector3d&)> holds;
+};
+
+/// The solid bounded by `faces` (a B-rep whose faces all lie on planes, quadrics and tori), inside
+/// `bounds`, with `inside` its point membership. An orbit is cut at the crossings of the faces'
+/// surfaces that the faces hold, and each piece between cuts is in the solid when `inside` holds
+/// at its middle (so a cut too many changes nothing). Independent of any sweep of the solid: the
+/// reference volume of a sweep of a part read from STEP.
+OrbitSolidPtr orbit_faces(std::vector<OrbitFace> faces, std::function<bool(const Eigen::Vector3d&)> inside,
+                          const Eigen::AlignedBox3d& bounds);
 
 /// The sweep of `body` (in its position at t = 0) by joint j over t in [0, T] (a revolute T is taken
 /// modulo nothing: T >= 2 pi covers whole circles). True when some t puts exp(-xi t) x in the body.
