@@ -2,6 +2,9 @@
 // orbit primitives, and the faces they cannot take named.
 #include <BRepBuilderAPI_NurbsConvert.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
+#include <BRep_Builder.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopoDS_Compound.hxx>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <random>
@@ -55,4 +58,12 @@ TEST_CASE("B-rep orbit solid: a face on a surface without an implicit form is na
   CHECK_NOTHROW(sweep::occt::brep_orbit_solid(box, 1e-9));
   const TopoDS_Shape nurbs = BRepBuilderAPI_NurbsConvert(box).Shape();
   CHECK_THROWS_WITH(sweep::occt::brep_orbit_solid(nurbs, 1e-9), Catch::Contains("face 0") && Catch::Contains("B-spline surface"));
+  // the third face of six made a spline: it is named by its place in the shape
+  TopoDS_Compound faces;
+  BRep_Builder builder;
+  builder.MakeCompound(faces);
+  int k = 0;
+  for (TopExp_Explorer ex(box, TopAbs_FACE); ex.More(); ex.Next(), ++k)
+    builder.Add(faces, k == 2 ? BRepBuilderAPI_NurbsConvert(ex.Current()).Shape() : ex.Current());
+  CHECK_THROWS_WITH(sweep::occt::brep_orbit_solid(faces, 1e-9), Catch::Contains("face 2") && Catch::Contains("B-spline surface"));
 }

@@ -47,6 +47,15 @@ Eigen::AlignedBox3d eigen_box(const Bnd_Box& b) {
 }  // namespace
 
 OrbitSolidPtr brep_orbit_solid(const TopoDS_Shape& body, double tol) {
+  int index = 0;  // (faces in the order the shape holds them)
+  for (TopExp_Explorer ex(body, TopAbs_FACE); ex.More(); ex.Next(), ++index) {
+    const BRepAdaptor_Surface s(TopoDS::Face(ex.Current()), false);
+    if (!implicit_surface(s))
+      throw InputError("/entity/file", "face " + std::to_string(index) + " of the solid lies on a " +
+                                           surface_kind_name(s.GetType()) +
+                                           ": its orbits' crossings have no exact form (planes, cylinders, cones, "
+                                           "spheres and tori do)");
+  }
   auto state = std::make_shared<BrepState>();
   state->tol = tol;
   state->faces = face_hits(body, tol);
@@ -54,11 +63,6 @@ OrbitSolidPtr brep_orbit_solid(const TopoDS_Shape& body, double tol) {
   std::vector<OrbitFace> faces;
   for (std::size_t k = 0; k < state->faces.size(); ++k) {
     const FaceHit& h = state->faces[k];
-    if (!h.implicit)
-      throw InputError("/entity/file", "face " + std::to_string(k) + " of the solid lies on a " +
-                                           surface_kind_name(h.surface->GetType()) +
-                                           ": its orbits' crossings have no exact form (planes, cylinders, cones, "
-                                           "spheres and tori do)");
     // (a root whose point has no clear parameters on the surface is a cut: one too many changes
     // nothing, the pieces are classified)
     faces.push_back({*h.implicit, eigen_box(h.box),
