@@ -13,20 +13,13 @@ namespace {
 using orbit_detail::Span;
 using orbit_detail::Spans;
 
-/// True when curve o keeps outside box b over [lo, hi] (each window of a quarter turn at most
-/// stays within its length times the curve's speed bound of its middle).
+/// True when curve o keeps outside box b over [lo, hi], in windows of a quarter turn at most.
 bool keeps_out(const OrbitCurve& o, double lo, double hi, const Eigen::AlignedBox3d& b) {
   const bool turns = o.a.squaredNorm() + o.b.squaredNorm() > 0;
   const int pieces = turns ? std::max(1, int(std::ceil((hi - lo) / (0.5 * M_PI)))) : 1;
   for (int p = 0; p < pieces; ++p) {
     const double mid = lo + (hi - lo) * (p + 0.5) / pieces, w = 0.5 * (hi - lo) / pieces;
-    const OrbitCurve s = o.shifted(mid);
-    bool out = false;
-    for (int i = 0; i < 3 && !out; ++i) {
-      const double at0 = s.c[i] + s.a[i], reach = w * (std::hypot(s.a[i], s.b[i]) + std::abs(s.d[i]));
-      out = at0 + reach < b.min()[i] || at0 - reach > b.max()[i];
-    }
-    if (!out) return false;
+    if (!orbit_detail::curve_misses_box(o.shifted(mid), w, b)) return false;
   }
   return true;
 }

@@ -70,6 +70,10 @@ class LabeledSolid : public OrbitSolid {
   Intervals on_curve(const OrbitCurve& o, double lo, double hi) const override;
 };
 
+/// True when curve s on [-w, w] keeps outside box b: each coordinate stays within w times its speed
+/// bound of its value at 0.
+bool curve_misses_box(const OrbitCurve& s, double w, const Eigen::AlignedBox3d& b);
+
 /// The box of the image of box b under T.
 inline Eigen::AlignedBox3d mapped_box(const Eigen::AlignedBox3d& b, const Eigen::Isometry3d& T) {
   if (b.min().maxCoeff() < -1e299 || b.max().minCoeff() > 1e299) return b;

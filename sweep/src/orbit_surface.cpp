@@ -34,17 +34,15 @@ T implicit_value(const OrbitSurface& s, const T& x, const T& y, const T& z) {
   return z;
 }
 
-/// True when curve o on [-w, w] keeps outside the box: each coordinate stays within w times its
-/// speed bound of its value at 0.
-bool misses(const OrbitCurve& o, double w, const Eigen::AlignedBox3d& box) {
+}  // namespace
+
+bool orbit_detail::curve_misses_box(const OrbitCurve& s, double w, const Eigen::AlignedBox3d& b) {
   for (int i = 0; i < 3; ++i) {
-    const double at0 = o.c[i] + o.a[i], reach = w * (std::hypot(o.a[i], o.b[i]) + std::abs(o.d[i]));
-    if (at0 + reach < box.min()[i] || at0 - reach > box.max()[i]) return true;
+    const double at0 = s.c[i] + s.a[i], reach = w * (std::hypot(s.a[i], s.b[i]) + std::abs(s.d[i]));
+    if (at0 + reach < b.min()[i] || at0 - reach > b.max()[i]) return true;
   }
   return false;
 }
-
-}  // namespace
 
 double OrbitSurface::value(const Eigen::Vector3d& p) const {
   const Eigen::Vector3d l = frame.inverse() * p;
@@ -62,7 +60,7 @@ std::vector<double> surface_crossings(const OrbitSurface& s, const OrbitCurve& o
   for (int p = 0; p < pieces; ++p) {
     const double a = lo + (hi - lo) * p / pieces, b = lo + (hi - lo) * (p + 1) / pieces;
     const double mid = 0.5 * (a + b), w = 0.5 * (b - a);
-    if (misses(o.shifted(mid), w, region)) continue;
+    if (orbit_detail::curve_misses_box(o.shifted(mid), w, region)) continue;
     const OrbitCurve c = local.shifted(mid);
     const TrigPoly X = TrigPoly::linear(c.c.x(), c.a.x(), c.b.x(), c.d.x());
     const TrigPoly Y = TrigPoly::linear(c.c.y(), c.a.y(), c.b.y(), c.d.y());
