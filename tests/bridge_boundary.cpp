@@ -1,6 +1,7 @@
 // The solid built from the split faces of an arrangement that separate a set from its complement.
 #include <BOPAlgo_Builder.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepBuilderAPI_MakePolygon.hxx>
 #include <BRepBuilderAPI_MakeSolid.hxx>
 #include <BRepBuilderAPI_Sewing.hxx>
 #include <BRep_Tool.hxx>
@@ -184,4 +185,36 @@ TEST_CASE("Hole filling: the one face whose edges are the free edges of a sewn s
     if (o.size() == 2 && o[0] == o[1]) ++same;
   }
   CHECK(same == 0);
+}
+
+TEST_CASE("Left-over faces: a sliver kept across a hole of the sewn shell, a third sheet at its other edges, is found and the shell closes without it") {
+  const TopoDS_Shape box = BRepPrimAPI_MakeBox(gp_Pnt(0.2, -0.1, 0.3), 1.0, 2.0, 0.5).Shape();
+  std::vector<TopoDS_Face> faces;
+  for (TopExp_Explorer ex(box, TopAbs_FACE); ex.More(); ex.Next()) faces.push_back(TopoDS::Face(ex.Current()));
+  REQUIRE(faces.size() == 6);
+  auto sewn = [](const std::vector<TopoDS_Face>& fs) {
+    auto s = std::make_unique<BRepBuilderAPI_Sewing>(1e-7);
+    for (const TopoDS_Face& f : fs) s->Add(f);
+    s->Perform();
+    return s;
+  };
+  SECTION("a triangle on the top face's plane with two of its edges on the box's: it and only it") {
+    // (as a piece of an end copy between the two envelope sheets that leave the copy at its edges)
+    const gp_Pnt a(0.2, -0.1, 0.8), b(1.2, -0.1, 0.8), c(0.2, 1.9, 0.8);
+    BRepBuilderAPI_MakePolygon triangle(a, b, c, true);
+    const TopoDS_Face sliver = BRepBuilderAPI_MakeFace(triangle.Wire(), true).Face();
+    std::vector<TopoDS_Face> with = faces;
+    with.push_back(sliver);
+    const auto open = sewn(with);
+    REQUIRE(open->NbFreeEdges() > 0);
+    CHECK(sweep::occt::faces_left_over(with, *open, 1e-7) == std::vector<std::size_t>{6});
+    const auto closed = sewn(faces);
+    CHECK(closed->NbFreeEdges() == 0);
+  }
+  SECTION("a box without its top: no face lies across the hole") {
+    const std::vector<TopoDS_Face> five(faces.begin(), faces.end() - 1);
+    const auto open = sewn(five);
+    REQUIRE(open->NbFreeEdges() == 4);
+    CHECK(sweep::occt::faces_left_over(five, *open, 1e-7).empty());
+  }
 }

@@ -913,7 +913,8 @@ void dump_boundary(const char* dir, const std::vector<Candidate>& cands, const s
 }
 
 /// Step 6: the kept pieces, oriented outward, sewn into the solid (c.out.solid); a hole of the
-/// sewn pieces that one dropped piece fills exactly is filled with it.
+/// sewn pieces that one dropped piece fills exactly is filled with it, and one that a kept sliver
+/// lies across is closed without the sliver.
 void sew_kept(const std::vector<Piece>& all, std::vector<int> keep, BoundaryContext& c) {
   const double size = c.size;
   BoundarySweep& out = c.out;
@@ -943,6 +944,12 @@ void sew_kept(const std::vector<Piece>& all, std::vector<int> keep, BoundaryCont
   };
   std::unique_ptr<BRepBuilderAPI_Sewing> sewing;
   sew(sewing);
+  auto widest_edge = [](const TopoDS_Shape& shape) {
+    double widest = 0;
+    for (TopExp_Explorer ex(shape, TopAbs_EDGE); ex.More(); ex.Next())
+      widest = std::max(widest, BRep_Tool::Tolerance(TopoDS::Edge(ex.Current())));
+    return widest;
+  };
   // (a sliver between two candidates that touch along a curve can be classified by samples on
   // either side of their contact and dropped: the shell without it is open, with it closed; the
   // verdict still judges the solid against the membership test)
@@ -956,12 +963,6 @@ void sew_kept(const std::vector<Piece>& all, std::vector<int> keep, BoundaryCont
     // kept only when the shell closes with them and its widest edge is within the gap or narrower
     // than before (an open shell whose sewing bridged a gap elsewhere keeps that gap when filled:
     // the hole was not what kept it open)
-    auto widest_edge = [](const TopoDS_Shape& shape) {
-      double widest = 0;
-      for (TopExp_Explorer ex(shape, TopAbs_EDGE); ex.More(); ex.Next())
-        widest = std::max(widest, BRep_Tool::Tolerance(TopoDS::Edge(ex.Current())));
-      return widest;
-    };
     const double widest_open = widest_edge(sewing->SewedShape());
     for (std::size_t i : fill) keep[i] = 1;
     sew(sewing);
@@ -969,6 +970,26 @@ void sew_kept(const std::vector<Piece>& all, std::vector<int> keep, BoundaryCont
     if (sewing->NbFreeEdges() > 0 || (widest_filled > gap && widest_filled >= widest_open)) {
       for (std::size_t i : fill) keep[i] = 0;
       sew(sewing);
+    }
+  }
+  // (a sliver of one candidate kept beside the two pieces that meet at its edges, which it crosses
+  // as a third sheet: the shell without it closes)
+  if (sewing->NbFreeEdges() > 0) {
+    std::vector<std::size_t> kept_index;
+    std::vector<TopoDS_Face> kept_faces;
+    for (std::size_t i = 0; i < all.size(); ++i)
+      if (keep[i] != 0) kept_index.push_back(i), kept_faces.push_back(all[i].face);
+    const std::vector<std::size_t> extra = faces_left_over(kept_faces, *sewing, gap);
+    if (!extra.empty()) {
+      const double widest_open = widest_edge(sewing->SewedShape());
+      std::vector<int> before = keep;
+      for (std::size_t k : extra) keep[kept_index[k]] = 0;
+      sew(sewing);
+      const double widest_closed = widest_edge(sewing->SewedShape());
+      if (sewing->NbFreeEdges() > 0 || (widest_closed > gap && widest_closed >= widest_open)) {
+        keep = before;
+        sew(sewing);
+      }
     }
   }
   // Pieces left apart by more than the sewing gap but less than the requested tolerance (the ends
