@@ -72,7 +72,7 @@ class Sheet {
     // across the interpolated arc (where two arcs cross, the gradient vanishes and turns with the
     // point, so it would not say which arc to follow); along the gradient where the arc has no length
     Vector2d dir(-guess.xs.y(), guess.xs.x());
-    if (!(dir.norm() > 1e-9 * scale_.norm())) dir = gradient(guess.x, pose);
+    if (!(dir.norm() > Settings::envelope_arc_degenerate * scale_.norm())) dir = gradient(guess.x, pose);
     if (!(dir.squaredNorm() > 0)) return guess;
     dir.normalize();
     if (!closed_) {
@@ -106,7 +106,7 @@ class Sheet {
 
   /// The gradient of g in the face's parameters (central differences).
   Vector2d gradient(const Vector2d& x, const PoseJet& pose) const {
-    const double hu = 1e-7 * scale_.x(), hv = 1e-7 * scale_.y();
+    const double hu = Settings::envelope_gradient_step * scale_.x(), hv = Settings::envelope_gradient_step * scale_.y();
     return Vector2d((g(x + Vector2d(hu, 0), pose) - g(x - Vector2d(hu, 0), pose)) / (2 * hu),
                     (g(x + Vector2d(0, hv), pose) - g(x - Vector2d(0, hv), pose)) / (2 * hv));
   }
@@ -123,14 +123,14 @@ class Sheet {
   bool ends_at_crossing(int e, const Vector2d& end, const Vector2d& middle, const PoseJet& pose) const {
     if (end_side_[e] == 4) return true;
     if (end_side_[e] < 0) return false;
-    return gradient(end, pose).norm() < 1e-3 * gradient(middle, pose).norm();
+    return gradient(end, pose).norm() < Settings::envelope_saddle_gradient * gradient(middle, pose).norm();
   }
 
   /// Newton steps from x to a zero of the gradient of g (the saddle where two arcs cross), each at
   /// most Settings::envelope_newton_step of the domain; x itself when the Hessian is singular.
   Vector2d onto_saddle(const Vector2d& x, const PoseJet& pose) const {
     const double most = Settings::envelope_newton_step * scale_.norm();
-    const Vector2d h(1e-5 * scale_.x(), 1e-5 * scale_.y());
+    const Vector2d h(Settings::envelope_hessian_step * scale_.x(), Settings::envelope_hessian_step * scale_.y());
     Vector2d p = x;
     for (int it = 0; it < 30; ++it) {
       const Vector2d grad = gradient(p, pose);
@@ -142,7 +142,7 @@ class Sheet {
       if (!step.allFinite()) break;
       if (step.norm() > most) step *= most / step.norm();
       p += step;
-      if (step.norm() < 1e-15 * scale_.norm()) break;
+      if (step.norm() < Settings::envelope_newton_stop * scale_.norm()) break;
     }
     return p;
   }
@@ -151,7 +151,7 @@ class Sheet {
   /// each at most Settings::envelope_newton_step of the domain (so that a flat stretch of g does not throw the point
   /// onto another arc).
   Vector2d onto_line(const Vector2d& x, const Vector2d& dir, const PoseJet& pose) const {
-    const double h = 1e-7 * scale_.norm(), most = Settings::envelope_newton_step * scale_.norm();
+    const double h = Settings::envelope_gradient_step * scale_.norm(), most = Settings::envelope_newton_step * scale_.norm();
     double lambda = 0;
     for (int it = 0; it < 60; ++it) {
       const Vector2d p = x + lambda * dir;
@@ -159,7 +159,7 @@ class Sheet {
       if (!(std::abs(d) > 0)) break;
       const double step = std::clamp(-g(p, pose) / d, -most, most);
       lambda += step;
-      if (std::abs(step) < 1e-15 * scale_.norm()) break;
+      if (std::abs(step) < Settings::envelope_newton_stop * scale_.norm()) break;
     }
     return x + lambda * dir;
   }

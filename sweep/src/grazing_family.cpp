@@ -47,7 +47,8 @@ bool is_closed(const std::vector<Vector2d>& arc) { return arc.size() > 2 && arc.
 
 /// The side of the domain a point lies on (0: v = lo, 1: u = hi, 2: v = hi, 3: u = lo), 4 inside.
 int side_of(const Patch& face, const Vector2d& s) {
-  const double eu = 1e-9 * (face.hi(0) - face.lo(0)), ev = 1e-9 * (face.hi(1) - face.lo(1));
+  const double eu = Settings::grazing_side_rounding * (face.hi(0) - face.lo(0)),
+               ev = Settings::grazing_side_rounding * (face.hi(1) - face.lo(1));
   if (std::abs(s.y() - face.lo(1)) <= ev) return 0;
   if (std::abs(s.x() - face.hi(0)) <= eu) return 1;
   if (std::abs(s.y() - face.hi(1)) <= ev) return 2;
@@ -293,7 +294,7 @@ double along_side(int side, const Vector2d& x) { return side == 0 || side == 2 ?
 std::optional<std::pair<double, double>> side_double_root(const Patch& face, const StageMotion& motion, int side,
                                                           double w0, double t0) {
   const double wlo = side == 0 || side == 2 ? face.lo(0) : face.lo(1), whi = side == 0 || side == 2 ? face.hi(0) : face.hi(1);
-  const double hw = 1e-5 * (whi - wlo);
+  const double hw = Settings::side_root_step * (whi - wlo);
   auto G = [&](double w, const PoseJet& P) {
     const Vector2d x = side_parameters(face, side, w);
     return grazing_value(face, P, x.x(), x.y());
@@ -317,11 +318,12 @@ std::optional<std::pair<double, double>> side_double_root(const Patch& face, con
     if (!step.allFinite()) return std::nullopt;
     w += std::clamp(step.x(), -0.1 * (whi - wlo), 0.1 * (whi - wlo));
     t += step.y();
-    if (std::abs(step.x()) <= 1e-13 * (whi - wlo) && std::abs(step.y()) <= 1e-15 * (1 + std::abs(t))) {
+    if (std::abs(step.x()) <= Settings::side_root_stop * (whi - wlo) &&
+        std::abs(step.y()) <= Settings::side_root_time_stop * (1 + std::abs(t))) {
       const PoseJet Q = motion.pose(t);
       const double gww_end = (G(w + hw, Q) - 2 * G(w, Q) + G(w - hw, Q)) / (hw * hw);
       // a double root, of a function that does vary along the side (not a pole)
-      if (!(scale > 0) || !(std::abs(gww_end) * (whi - wlo) > 1e-6 * scale)) return std::nullopt;
+      if (!(scale > 0) || !(std::abs(gww_end) * (whi - wlo) > Settings::side_root_curvature * scale)) return std::nullopt;
       return std::make_pair(w, t);
     }
   }

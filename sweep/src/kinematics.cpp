@@ -9,6 +9,7 @@
 
 #include "kinematics_internal.hpp"
 #include "sweep/error.hpp"
+#include "sweep/settings.hpp"
 
 namespace sweep {
 namespace kinematics {
@@ -85,7 +86,7 @@ double twist_pitch(const Twist& t) {
 
 Wrench dot1_wrench(const Vec3& a_i, const Vec3& a_j) {
   const Vec3 c = unit(a_i, "dot-1 a_i").cross(unit(a_j, "dot-1 a_j"));
-  SWEEP_ASSERT(c.norm() > 1e-12, "dot-1 needs non-parallel vectors");
+  SWEEP_ASSERT(c.norm() > sweep::Settings::kinematics_rounding, "dot-1 needs non-parallel vectors");
   return couple_wrench(c);
 }
 
@@ -326,7 +327,7 @@ Vec3 canonical_direction(const Vec3& v) {
   Vec3 s = v.normalized();
   int k = 0;
   for (int i = 1; i < 3; ++i)
-    if (std::abs(s[i]) > std::abs(s[k]) + 1e-12) k = i;
+    if (std::abs(s[i]) > std::abs(s[k]) + sweep::Settings::kinematics_rounding) k = i;
   if (s[k] < 0) s = -s;
   return s;
 }
@@ -338,7 +339,7 @@ Vec3 nearest_to_origin(const Vec3& p, const Vec3& s) { return p - p.dot(s) * s; 
 ScrewBasis echelon_basis(const ScrewBasis& cols) {
   Eigen::MatrixXd m = cols.transpose();  // one screw per row
   const double big = std::max(1.0, m.cwiseAbs().maxCoeff());
-  const double eps = 1e-9 * big;
+  const double eps = sweep::Settings::screw_rank_rounding * big;
   Eigen::Index row = 0;
   for (Eigen::Index c = 0; c < 6 && row < m.rows(); ++c) {
     Eigen::Index piv = row;
@@ -359,11 +360,11 @@ ScrewBasis echelon_basis(const ScrewBasis& cols) {
 namespace detail {
 
 void clean(ScrewBasis& b, double scale) {
-  const double eps = 1e-12 * std::max(1.0, scale);
+  const double eps = sweep::Settings::kinematics_rounding * std::max(1.0, scale);
   for (Eigen::Index j = 0; j < b.cols(); ++j)
     for (int i = 0; i < 6; ++i) {
       double& x = b(i, j);
-      const double e = i < 3 ? 1e-12 : eps;
+      const double e = i < 3 ? sweep::Settings::kinematics_rounding : eps;
       if (std::abs(x) < e) x = 0.0;
     }
 }
@@ -457,9 +458,9 @@ Joint classify_local(const ScrewBasis& local, const NumericFrame& frame) {
   }
 
   // Rounding noise off the geometry, then the canonical world basis.
-  const double eps_len = 1e-12 * (frame.center.norm() + L);
+  const double eps_len = sweep::Settings::kinematics_rounding * (frame.center.norm() + L);
   for (int i = 0; i < 3; ++i) {
-    if (std::abs(j.direction[i]) < 1e-12) j.direction[i] = 0.0;
+    if (std::abs(j.direction[i]) < sweep::Settings::kinematics_rounding) j.direction[i] = 0.0;
     if (std::abs(j.point[i]) < eps_len) j.point[i] = 0.0;
   }
   if (j.direction.norm() > 0.0) j.direction.normalize();
@@ -487,7 +488,7 @@ Joint classify_local(const ScrewBasis& local, const NumericFrame& frame) {
     case JointKind::Planar: {
       int m = 0;
       for (int i = 1; i < 3; ++i)
-        if (std::abs(s[i]) < std::abs(s[m]) - 1e-12) m = i;
+        if (std::abs(s[i]) < std::abs(s[m]) - sweep::Settings::kinematics_rounding) m = i;
       const Vec3 u = (Vec3::Unit(m) - s[m] * s).normalized();
       j.twists.resize(6, 3);
       j.twists << revolute_twist(Vec3::Zero(), s), prismatic_twist(u), prismatic_twist(s.cross(u));

@@ -283,7 +283,7 @@ bool solve_image(const ParametricEntity& e, const Motion& motion, const Vector3d
   for (int it = 0; it < 40; ++it) {
     if (f < eps) return true;
     const Eigen::Matrix3d JJ = J * J.transpose();
-    const double mu = 1e-12 * std::max(JJ.trace(), 1e-300);
+    const double mu = Settings::image_newton_damping * std::max(JJ.trace(), 1e-300);
     const Eigen::VectorXd step = -J.transpose() * (JJ + mu * Eigen::Matrix3d::Identity()).ldlt().solve(F);
     double t = 1.0;
     bool improved = false;
@@ -370,7 +370,7 @@ int swept_image_membership(const ParametricEntity& e, const Motion& motion, cons
     lo[n + j] = e.lo(j);
     hi[n + j] = e.hi(j);
   }
-  const double eps = 1e-10 * scale;
+  const double eps = Settings::image_newton_residual * scale;
   BoxStack stack(k);
   stack.push(lo, hi);
   std::vector<double> c(k), w(k), speed(n);
@@ -481,9 +481,9 @@ bool slides_along_itself(const EntitySpec& e, const Eigen::Isometry3d& G, const 
         break;
       }
       const double ck = v.dot(g) / g.squaredNorm();
-      if ((v - ck * g).norm() > 1e-9 * v.norm()) ok = false;
+      if ((v - ck * g).norm() > Settings::parameter_shift_match * v.norm()) ok = false;
       if (n == 0) c = ck;
-      else if (std::abs(ck - c) > 1e-9 * std::abs(c)) ok = false;
+      else if (std::abs(ck - c) > Settings::parameter_shift_match * std::abs(c)) ok = false;
     }
     if (!ok || c == 0) continue;
     // the motion over the whole range is that shift
@@ -493,7 +493,7 @@ bool slides_along_itself(const EntitySpec& e, const Eigen::Isometry3d& G, const 
       const Eigen::Vector3d moved = j.transform(t) * (A * pe->eval(s.data()));
       s[k] += c * t;
       const Eigen::Vector3d shifted = A * pe->eval(s.data());
-      if (!shifted.allFinite() || (moved - shifted).norm() > 1e-9 * scale) ok = false;
+      if (!shifted.allFinite() || (moved - shifted).norm() > Settings::parameter_shift_match * scale) ok = false;
     }
     if (!ok) continue;
     *reduced = e;

@@ -1,5 +1,7 @@
 #include "sweep/stage_motion.hpp"
 
+#include "sweep/settings.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -117,7 +119,7 @@ std::optional<ScrewSegment> StageMotion::as_screw(double radius) const {
   }
   if (!std::isfinite(reach) || !(wmax * reach + vmax > 0)) return std::nullopt;  // no motion
   // the screw of the fastest turning twist (or of the fastest slide when none turns), rate 1
-  const bool turns = wmax * reach > 1e-12 * vmax;
+  const bool turns = wmax * reach > Settings::screw_rounding * vmax;
   ScrewJoint j = screw_of(turns ? tw[kw] : Twist{Eigen::Vector3d::Zero(), tw[kv].v});
   const Twist unit{turns ? j.direction : Eigen::Vector3d::Zero(),
                    turns ? Eigen::Vector3d(j.point.cross(j.direction) + j.pitch * j.direction) : j.direction};
@@ -127,7 +129,7 @@ std::optional<ScrewSegment> StageMotion::as_screw(double radius) const {
   double r_min = 0, r_max = 0;
   for (int i = 0; i <= n; ++i) {
     const double r = turns ? tw[i].omega.dot(unit.omega) : tw[i].v.dot(unit.v);
-    if ((tw[i].omega - r * unit.omega).norm() * reach + (tw[i].v - r * unit.v).norm() > 1e-9 * speed)
+    if ((tw[i].omega - r * unit.omega).norm() * reach + (tw[i].v - r * unit.v).norm() > Settings::screw_twist_match * speed)
       return std::nullopt;
     r_min = std::min(r_min, r), r_max = std::max(r_max, r);
     if (i == 0) continue;
@@ -143,7 +145,8 @@ std::optional<ScrewSegment> StageMotion::as_screw(double radius) const {
       q[i] = (M[i].translation() - M[0].translation()).dot(j.direction);
     }
   }
-  if (r_min < -1e-12 * std::abs(r_max) && r_max > 1e-12 * std::abs(r_min)) return std::nullopt;  // turns back
+  if (r_min < -Settings::screw_rounding * std::abs(r_max) && r_max > Settings::screw_rounding * std::abs(r_min))
+    return std::nullopt;  // turns back
   double range = q[n];
   if (range < 0) {  // the same screw the other way round
     j.direction = -j.direction;
@@ -151,7 +154,7 @@ std::optional<ScrewSegment> StageMotion::as_screw(double radius) const {
     for (double& qi : q) qi = -qi;
   }
   if (!(range > 0)) return std::nullopt;
-  if (turns && std::abs(j.pitch) * 2 * M_PI <= 1e-12 * reach) {
+  if (turns && std::abs(j.pitch) * 2 * M_PI <= Settings::screw_rounding * reach) {
     j.pitch = 0;
     j.type = JointType::Revolute;
   }
@@ -160,7 +163,8 @@ std::optional<ScrewSegment> StageMotion::as_screw(double radius) const {
   // the screw's pose at every sample moves the body's points as the motion does
   for (int i = 0; i <= n; ++i) {
     const Eigen::Isometry3d S = j.transform(q[i]) * M[0];
-    if ((S.linear() - M[i].linear()).norm() * radius + (S.translation() - M[i].translation()).norm() > 1e-10 * reach)
+    if ((S.linear() - M[i].linear()).norm() * radius + (S.translation() - M[i].translation()).norm() >
+        Settings::screw_pose_match * reach)
       return std::nullopt;
   }
   return ScrewSegment{j, M[0], a, b};
@@ -253,7 +257,7 @@ PathMotion::PathMotion(double lo, double hi, const Expr translate[3], std::vecto
       double t = lo + (hi - lo) * s / 256.0;
       Eigen::Vector3d a;
       for (int i = 0; i < 3; ++i) a[i] = rotations_[k].axis[i].eval(&t);
-      if (!(a.norm() > 1e-12))
+      if (!(a.norm() > Settings::screw_rounding))
         throw InputError(field + "/rotate/" + std::to_string(k) + "/axis",
                          "the rotation axis vanishes at t = " + std::to_string(t));
     }
@@ -315,8 +319,8 @@ PathMotion::RateBound PathMotion::rates_over(double a, double b) const {
     r.omega += defined && least > 0 ? 2 * largest_norm(daxis) / least : kInf;
   }
   // the norms above are computed in rounded arithmetic from rounded-out enclosures
-  r.omega *= 1 + 1e-12;
-  r.origin *= 1 + 1e-12;
+  r.omega *= 1 + Settings::rate_bound_rounding;
+  r.origin *= 1 + Settings::rate_bound_rounding;
   if (std::isfinite(r.omega) && std::isfinite(r.origin)) return r;
   if (b - a <= (hi_ - lo_) / (kRatePieces << kRateSplits) || !(r.omega == r.omega)) return r;
   const double m = 0.5 * (a + b);
@@ -347,11 +351,11 @@ KeyframeMotion::KeyframeMotion(std::vector<double> times, std::vector<Eigen::Iso
     const Eigen::AngleAxisd aa(Eigen::Matrix3d(B.linear() * A.linear().transpose()));
     Segment s;
     const double phi = aa.angle();
-    if (phi > 1e-12) {
+    if (phi > Settings::screw_rounding) {
       s.w = aa.axis();
       s.rate = phi / dt;
     }
-    if (interpolation_ == Interpolation::Linear || phi <= 1e-12) {
+    if (interpolation_ == Interpolation::Linear || phi <= Settings::screw_rounding) {
       s.dp = (B.translation() - A.translation()) / dt;
       s.slide = s.dp;
     } else {
@@ -436,7 +440,7 @@ std::optional<std::vector<ScrewSegment>> KeyframeMotion::screw_segments() const 
       } else {
         // turning about the pose origin while it slides: a screw only when it slides along the axis
         const double slide = s.slide.norm();
-        if (s.slide.cross(s.w).norm() > 1e-12 * std::max(1.0, slide)) return std::nullopt;
+        if (s.slide.cross(s.w).norm() > Settings::screw_rounding * std::max(1.0, slide)) return std::nullopt;
         seg.joint.point = poses_[k].translation();
         seg.joint.pitch = s.slide.dot(s.w) / s.rate;
       }
@@ -458,9 +462,9 @@ namespace {
 /// Whether segment b continues the screw of segment a (see KeyframeMotion::merged).
 bool continues(const ScrewSegment& a, const ScrewSegment& b, double scale) {
   const ScrewJoint &ja = a.joint, &jb = b.joint;
-  const double eps = 1e-12 * std::max(scale, 1e-300);
+  const double eps = Settings::screw_rounding * std::max(scale, 1e-300);
   // (a revolute joint and a helical one of pitch 0 to rounding are one screw)
-  if (ja.is_rotation() != jb.is_rotation() || (ja.direction - jb.direction).norm() > 1e-12) return false;
+  if (ja.is_rotation() != jb.is_rotation() || (ja.direction - jb.direction).norm() > Settings::screw_rounding) return false;
   if (ja.type != JointType::Prismatic) {
     if (std::abs(ja.pitch - jb.pitch) > eps || (jb.point - ja.point).cross(ja.direction).norm() > eps) return false;
   }

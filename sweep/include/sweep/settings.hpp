@@ -238,6 +238,59 @@ struct Settings {
   /// The longest Newton step that puts a point of an envelope sheet on its grazing arc (x the
   /// face's parameter domain).
   static constexpr double envelope_newton_step = 0.01;
+  /// The steps of the central differences of g on a face (x its parameter domain): its gradient,
+  /// and the gradient's own differences (the Hessian at a saddle where two arcs cross).
+  static constexpr double envelope_gradient_step = 1e-7;
+  static constexpr double envelope_hessian_step = 1e-5;
+  /// Newton's steps onto an arc or a saddle stop below this (x the parameter domain).
+  static constexpr double envelope_newton_stop = 1e-15;
+  /// An interpolated arc shorter than this where it is met (x the parameter domain) has no
+  /// direction: the point goes along the gradient of g instead.
+  static constexpr double envelope_arc_degenerate = 1e-9;
+  /// An arc ends where it crosses another when the gradient of g there is below this fraction of
+  /// its size in the arc's middle.
+  static constexpr double envelope_saddle_gradient = 1e-3;
+  /// A point is on a side of a face's domain within this (x the domain's extent in that parameter).
+  static constexpr double grazing_side_rounding = 1e-9;
+  /// The double root of g on a side of its face (where an arc appears or vanishes): the step of
+  /// g's differences along the side (x its length), Newton's stops in the side's parameter (x its
+  /// length) and in t (x 1 + |t|), and the least second derivative of g along the side, against
+  /// g's rates, that makes the root a double one and not a pole's.
+  static constexpr double side_root_step = 1e-5;
+  static constexpr double side_root_stop = 1e-13;
+  static constexpr double side_root_time_stop = 1e-15;
+  static constexpr double side_root_curvature = 1e-6;
+
+  // --- motions that are screws (stage_motion.cpp: paths taken as one screw, keyframe segments)
+  /// A path is one screw when every sampled twist lies within this (x the path's speed) of that
+  /// screw's at some rate, and the screw's poses move the body as the path does to within
+  /// screw_pose_match (x the body's reach).
+  static constexpr double screw_twist_match = 1e-9;
+  static constexpr double screw_pose_match = 1e-10;
+  /// Rounding in recognising screws (relative): a turning too slow to count against the sliding,
+  /// rates that change sign, a pitch of zero, a keyframe rotation of no angle, a rotation axis that
+  /// vanishes, and two keyframe segments on one screw.
+  static constexpr double screw_rounding = 1e-12;
+  /// Bounds on a path's rates, computed in rounded arithmetic from enclosures, are widened by this
+  /// (relative).
+  static constexpr double rate_bound_rounding = 1e-12;
+
+  // --- joints recognised from assembly constraints (kinematics.cpp), the image membership
+  /// A pivot of a screw system's echelon form below this (x its largest entry) is zero: the
+  /// system's rank.
+  static constexpr double screw_rank_rounding = 1e-9;
+  /// Rounding in the screw systems and the joints read from them (relative): parallel directions,
+  /// ties between components, components cleaned to zero.
+  static constexpr double kinematics_rounding = 1e-12;
+  /// The damping of the image membership's Gauss-Newton steps (x the trace of J J^T).
+  static constexpr double image_newton_damping = 1e-12;
+  /// A point is in the image when the membership's Gauss-Newton brings its residual below this
+  /// (x size).
+  static constexpr double image_newton_residual = 1e-10;
+  /// A joint moves an entity along one of its own parameters when its velocity is that
+  /// parameter's derivative times one rate at every sample, and its poses shift the parameter, to
+  /// this (relative; x size for the poses).
+  static constexpr double parameter_shift_match = 1e-9;
 
   // --- solids under general motions (the candidate patches' arrangement)
   /// Solids other than balls under a path that is no screw are built from their candidate patches
