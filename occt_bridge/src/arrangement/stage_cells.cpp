@@ -174,6 +174,11 @@ StageInput::StageInput(const TopoDS_Shape& body, int dim, std::shared_ptr<const 
   screw = this->motion->as_screw(radius_of(body));
 }
 
+const Eigen::AlignedBox3d& StageInput::body_box() const {
+  std::call_once(body_box_->measured, [this] { body_box_->box = box_of(body); });
+  return body_box_->box;
+}
+
 const ScrewJoint& StageInput::j() const {
   if (!screw) throw InternalError("a stage under a motion that is no screw has no screw joint");
   return screw->joint;
@@ -190,7 +195,8 @@ PointTest stage_trajectory_membership(const StageInput& in, double tol_factor) {
   auto by_trajectory = std::make_shared<std::unique_ptr<TrajectoryMembership>>();
   return [in, by_trajectory, tol_factor](const Eigen::Vector3d& x) {
     if (!*by_trajectory)
-      *by_trajectory = std::make_unique<TrajectoryMembership>(in.body, in.dim == 3, *in.motion, tol_factor * in.size);
+      *by_trajectory = std::make_unique<TrajectoryMembership>(in.body, in.dim == 3, *in.motion, tol_factor * in.size,
+                                                              in.body_box());
     return (**by_trajectory)(x);
   };
 }
@@ -203,8 +209,9 @@ PointTestMaker orbit_membership(const OrbitSolidPtr& start, const ScrewJoint& j,
 
 PointTestMaker trajectory_membership(const TopoDS_Shape& body, std::shared_ptr<const StageMotion> motion, double ttol,
                                      bool solid) {
-  return [body, motion, ttol, solid]() -> PointTest {
-    auto test = std::make_shared<TrajectoryMembership>(body, solid, *motion, ttol);
+  const Eigen::AlignedBox3d body_box = box_of(body);  // (once for every thread's test)
+  return [body, motion, ttol, solid, body_box]() -> PointTest {
+    auto test = std::make_shared<TrajectoryMembership>(body, solid, *motion, ttol, body_box);
     return [test](const Eigen::Vector3d& x) { return (*test)(x); };
   };
 }

@@ -9,6 +9,7 @@
 #include <TopoDS_Shape.hxx>
 #include <chrono>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <nlohmann/json.hpp>
 #include <vector>
@@ -124,6 +125,15 @@ struct StageInput {
   /// The screw's range.
   double T() const { return j().hi; }
   bool full_turn() const { return screw && j().type == JointType::Revolute && T() >= 2 * M_PI - 1e-12; }
+  /// box_of(body), measured once for every copy of the input and every thread.
+  const Eigen::AlignedBox3d& body_box() const;
+
+ private:
+  struct BodyBox {
+    std::once_flag measured;
+    Eigen::AlignedBox3d box;
+  };
+  std::shared_ptr<BodyBox> body_box_ = std::make_shared<BodyBox>();
 };
 
 /// A screw joint's stage motion over q in [0, T] from the body's pose.

@@ -273,10 +273,14 @@ TopoDS_Shape solid_from_boundary_faces(const std::vector<TopoDS_Face>& split, co
 /// orbit of the screw); other faces by OCCT's intersector, along a path that is exact when the
 /// motion is one slide or turn (a segment, a circle), and otherwise (a helix too) the image of x
 /// under the motion's inverse poses, fitted once within `tol` over the region the body sweeps.
-/// Keeps OCCT state: one per thread. The motion must outlive it.
+/// Keeps OCCT state: one per thread. The motion must outlive it. `body_box` is box_of(body), when
+/// the caller has it (it is measured on the faces, which costs about as much as the rest of the
+/// set-up on a body of a hundred faces).
 class TrajectoryMembership {
  public:
   TrajectoryMembership(const TopoDS_Shape& body, bool solid, const StageMotion& motion, double tol);
+  TrajectoryMembership(const TopoDS_Shape& body, bool solid, const StageMotion& motion, double tol,
+                       const Eigen::AlignedBox3d& body_box);
   ~TrajectoryMembership();
   TrajectoryMembership(const TrajectoryMembership&) = delete;
   TrajectoryMembership& operator=(const TrajectoryMembership&) = delete;

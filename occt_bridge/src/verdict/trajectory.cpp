@@ -172,8 +172,8 @@ class BackwardPaths {
 /// rays that decide whether y(0) is in the body (OCCT's solid classifier decides where a ray
 /// cannot).
 struct TrajectoryMembership::Impl {
-  Impl(const TopoDS_Shape& body, bool solid, const StageMotion& m, double tol)
-      : solid_(solid), paths_(m, box_of(body), tol), tol_(tol) {
+  Impl(const TopoDS_Shape& body, bool solid, const StageMotion& m, double tol, const Eigen::AlignedBox3d& body_box)
+      : solid_(solid), paths_(m, body_box, tol), tol_(tol) {
     if (solid_) cls_.Load(body);
     inter_ = face_hits(body, tol);
   }
@@ -308,7 +308,10 @@ struct TrajectoryMembership::Impl {
 };
 
 TrajectoryMembership::TrajectoryMembership(const TopoDS_Shape& body, bool solid, const StageMotion& motion, double tol)
-    : impl_(std::make_unique<Impl>(body, solid, motion, tol)) {}
+    : impl_(std::make_unique<Impl>(body, solid, motion, tol, box_of(body))) {}
+TrajectoryMembership::TrajectoryMembership(const TopoDS_Shape& body, bool solid, const StageMotion& motion, double tol,
+                                           const Eigen::AlignedBox3d& body_box)
+    : impl_(std::make_unique<Impl>(body, solid, motion, tol, body_box)) {}
 TrajectoryMembership::~TrajectoryMembership() = default;
 bool TrajectoryMembership::operator()(const Eigen::Vector3d& x) { return (*impl_)(x); }
 int TrajectoryMembership::ray_inside(const Eigen::Vector3d& x) { return sweep::occt::ray_inside(impl_->inter_, x, impl_->tol_); }
