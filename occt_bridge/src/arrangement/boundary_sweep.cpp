@@ -950,6 +950,19 @@ void sew_kept(const std::vector<Piece>& all, std::vector<int> keep, BoundaryCont
       widest = std::max(widest, BRep_Tool::Tolerance(TopoDS::Edge(ex.Current())));
     return widest;
   };
+  // keep changed to `changed` and the pieces sewn again, taken only when the shell closes and its
+  // widest edge is within the gap or narrower than before (an open shell whose sewing bridged a
+  // gap elsewhere keeps that gap when closed so: the hole was not what kept it open), else undone
+  auto sew_if_it_closes = [&](const std::vector<int>& changed) {
+    const double widest_open = widest_edge(sewing->SewedShape());
+    const std::vector<int> before = keep;
+    keep = changed;
+    sew(sewing);
+    const double widest = widest_edge(sewing->SewedShape());
+    if (sewing->NbFreeEdges() == 0 && (widest <= gap || widest < widest_open)) return;
+    keep = before;
+    sew(sewing);
+  };
   // (a sliver between two candidates that touch along a curve can be classified by samples on
   // either side of their contact and dropped: the shell without it is open, with it closed; the
   // verdict still judges the solid against the membership test)
@@ -957,20 +970,11 @@ void sew_kept(const std::vector<Piece>& all, std::vector<int> keep, BoundaryCont
   std::vector<TopoDS_Face> dropped_faces;
   for (std::size_t i = 0; i < all.size(); ++i)
     if (keep[i] == 0) dropped.push_back(i), dropped_faces.push_back(all[i].face);
-  std::vector<std::size_t> fill;
-  for (std::size_t k : faces_filling_holes(dropped_faces, *sewing, gap)) fill.push_back(dropped[k]);
+  const std::vector<std::size_t> fill = faces_filling_holes(dropped_faces, *sewing, gap);
   if (!fill.empty()) {
-    // kept only when the shell closes with them and its widest edge is within the gap or narrower
-    // than before (an open shell whose sewing bridged a gap elsewhere keeps that gap when filled:
-    // the hole was not what kept it open)
-    const double widest_open = widest_edge(sewing->SewedShape());
-    for (std::size_t i : fill) keep[i] = 1;
-    sew(sewing);
-    const double widest_filled = widest_edge(sewing->SewedShape());
-    if (sewing->NbFreeEdges() > 0 || (widest_filled > gap && widest_filled >= widest_open)) {
-      for (std::size_t i : fill) keep[i] = 0;
-      sew(sewing);
-    }
+    std::vector<int> with = keep;
+    for (std::size_t k : fill) with[dropped[k]] = 1;
+    sew_if_it_closes(with);
   }
   // (a sliver of one candidate kept beside the two pieces that meet at its edges, which it crosses
   // as a third sheet: the shell without it closes)
@@ -981,15 +985,9 @@ void sew_kept(const std::vector<Piece>& all, std::vector<int> keep, BoundaryCont
       if (keep[i] != 0) kept_index.push_back(i), kept_faces.push_back(all[i].face);
     const std::vector<std::size_t> extra = faces_left_over(kept_faces, *sewing, gap);
     if (!extra.empty()) {
-      const double widest_open = widest_edge(sewing->SewedShape());
-      std::vector<int> before = keep;
-      for (std::size_t k : extra) keep[kept_index[k]] = 0;
-      sew(sewing);
-      const double widest_closed = widest_edge(sewing->SewedShape());
-      if (sewing->NbFreeEdges() > 0 || (widest_closed > gap && widest_closed >= widest_open)) {
-        keep = before;
-        sew(sewing);
-      }
+      std::vector<int> without = keep;
+      for (std::size_t k : extra) without[kept_index[k]] = 0;
+      sew_if_it_closes(without);
     }
   }
   // Pieces left apart by more than the sewing gap but less than the requested tolerance (the ends

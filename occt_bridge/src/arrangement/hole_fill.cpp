@@ -28,55 +28,59 @@ bool same_edge(const EdgeMarks& x, const EdgeMarks& y, double gap) {
   return (x.a.Distance(y.a) <= gap && x.b.Distance(y.b) <= gap) || (x.a.Distance(y.b) <= gap && x.b.Distance(y.a) <= gap);
 }
 
+/// The marks of the sewing's free edges.
+std::vector<EdgeMarks> free_edges_of(const BRepBuilderAPI_Sewing& sewing) {
+  std::vector<EdgeMarks> out;
+  for (int i = 1; i <= sewing.NbFreeEdges(); ++i) out.push_back(marks_of(sewing.FreeEdge(i)));
+  return out;
+}
+
+/// The marks of a face's edges that are not degenerate.
+std::vector<EdgeMarks> edges_of(const TopoDS_Face& face) {
+  std::vector<EdgeMarks> out;
+  for (TopExp_Explorer ex(face, TopAbs_EDGE); ex.More(); ex.Next())
+    if (!BRep_Tool::Degenerated(TopoDS::Edge(ex.Current()))) out.push_back(marks_of(TopoDS::Edge(ex.Current())));
+  return out;
+}
+
+/// Whether m is one of the edges.
+bool among(const EdgeMarks& m, const std::vector<EdgeMarks>& edges, double gap) {
+  return std::any_of(edges.begin(), edges.end(), [&](const EdgeMarks& e) { return same_edge(m, e, gap); });
+}
+
 }  // namespace
 
 std::vector<std::size_t> faces_filling_holes(const std::vector<TopoDS_Face>& faces, const BRepBuilderAPI_Sewing& sewing,
                                              double gap) {
-  std::vector<EdgeMarks> free;
-  for (int i = 1; i <= sewing.NbFreeEdges(); ++i) free.push_back(marks_of(sewing.FreeEdge(i)));
+  const std::vector<EdgeMarks> free = free_edges_of(sewing);
   std::vector<std::size_t> out;
   if (free.empty()) return out;
   for (std::size_t i = 0; i < faces.size(); ++i) {
-    bool fills = true;
-    int edges = 0;
-    for (TopExp_Explorer ex(faces[i], TopAbs_EDGE); ex.More() && fills; ex.Next()) {
-      const TopoDS_Edge& e = TopoDS::Edge(ex.Current());
-      if (BRep_Tool::Degenerated(e)) continue;
-      const EdgeMarks m = marks_of(e);
-      fills = std::any_of(free.begin(), free.end(), [&](const EdgeMarks& f) { return same_edge(m, f, gap); });
-      ++edges;
-    }
-    if (fills && edges > 0) out.push_back(i);
+    const std::vector<EdgeMarks> edges = edges_of(faces[i]);
+    if (!edges.empty() && std::all_of(edges.begin(), edges.end(), [&](const EdgeMarks& m) { return among(m, free, gap); }))
+      out.push_back(i);
   }
   return out;
 }
 
 std::vector<std::size_t> faces_left_over(const std::vector<TopoDS_Face>& faces, const BRepBuilderAPI_Sewing& sewing,
                                          double gap) {
-  std::vector<EdgeMarks> free;
-  for (int i = 1; i <= sewing.NbFreeEdges(); ++i) free.push_back(marks_of(sewing.FreeEdge(i)));
+  const std::vector<EdgeMarks> free = free_edges_of(sewing);
   std::vector<std::size_t> out;
   if (free.empty()) return out;
   std::vector<std::vector<EdgeMarks>> edges(faces.size());
-  for (std::size_t i = 0; i < faces.size(); ++i)
-    for (TopExp_Explorer ex(faces[i], TopAbs_EDGE); ex.More(); ex.Next())
-      if (!BRep_Tool::Degenerated(TopoDS::Edge(ex.Current()))) edges[i].push_back(marks_of(TopoDS::Edge(ex.Current())));
-  auto is_free = [&](const EdgeMarks& m) {
-    return std::any_of(free.begin(), free.end(), [&](const EdgeMarks& f) { return same_edge(m, f, gap); });
-  };
+  for (std::size_t i = 0; i < faces.size(); ++i) edges[i] = edges_of(faces[i]);
   // the other faces with an edge on m
   auto others_on = [&](const EdgeMarks& m, std::size_t self) {
     int n = 0;
-    for (std::size_t j = 0; j < faces.size(); ++j)
-      if (j != self && std::any_of(edges[j].begin(), edges[j].end(), [&](const EdgeMarks& x) { return same_edge(m, x, gap); }))
-        ++n;
+    for (std::size_t j = 0; j < faces.size(); ++j) n += j != self && among(m, edges[j], gap);
     return n;
   };
   for (std::size_t i = 0; i < faces.size(); ++i) {
     int open = 0;
     bool left_over = !edges[i].empty();
     for (const EdgeMarks& m : edges[i]) {
-      if (is_free(m)) {
+      if (among(m, free, gap)) {
         ++open;
         continue;
       }
